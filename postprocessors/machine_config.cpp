@@ -1,0 +1,261 @@
+#include "post/machine_config.hpp"
+
+#include "toml_table_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace subfeed::post {
+
+std::string_view to_string(KinematicsType type) {
+  return type == KinematicsType::xyz ? "xyz" : "xyzac-trt";
+}
+std::string_view to_string(Protocol protocol) { return protocol == Protocol::grbl ? "grbl" : "fanuc"; }
+std::string_view to_string(Dialect dialect) {
+  constexpr std::array<std::string_view, 3> names{"grbl", "fanuc", "linuxcnc"};
+  return names[static_cast<std::size_t>(dialect)];
+}
+std::string_view to_string(Parity parity) {
+  constexpr std::array<std::string_view, 3> names{"none", "even", "odd"};
+  return names[static_cast<std::size_t>(parity)];
+}
+std::string_view to_string(FlowControl flow) {
+  constexpr std::array<std::string_view, 4> names{"none", "xon-xoff", "rts-cts", "both"};
+  return names[static_cast<std::size_t>(flow)];
+}
+
+namespace {
+
+constexpr double max_linear_travel = 100000.0; // mm
+constexpr double max_rotary_limit = 3600.0;    // deg: ten turns of a limited axis
+constexpr double max_feed_limit = 1.0e6;       // mm/min or deg/min
+constexpr std::array standard_bauds{300,   600,   1200,   2400,   4800,   9600,  19200,
+                                    38400, 57600, 115200, 230400, 460800, 921600};
+
+template <class T>
+Expected<T> from_names(TomlTableReader& table, std::string_view key,
+                       std::initializer_list<std::string_view> names) {
+  SUBFEED_TRY_ASSIGN(const std::string name, table.choice(key, names));
+  int index = 0;
+  for (const auto n : names) {
+    if (n == name) {
+      break;
+    }
+    ++index;
+  }
+  return static_cast<T>(index);
+}
+
+Expected<long> integer_in(TomlTableReader& table, std::string_view key, long lo, long hi) {
+  SUBFEED_TRY_ASSIGN(const long value, table.integer(key));
+  if (value < lo || value > hi) {
+    return table.invalid(key, std::to_string(value) + " is outside " + std::to_string(lo) + ".." +
+                                  std::to_string(hi));
+  }
+  return value;
+}
+
+Expected<double> number_in(TomlTableReader& table, std::string_view key, double lo, double hi,
+                           std::string_view unit) {
+  SUBFEED_TRY_ASSIGN(const double value, table.number(key));
+  if (value < lo || value > hi) {
+    std::ostringstream message;
+    message << value << ' ' << unit << " is outside " << lo << ".." << hi << ' ' << unit;
+    return table.invalid(key, message.str());
+  }
+  return value;
+}
+
+Expected<AxisLimits> read_axis(TomlTableReader& axis, bool rotary) {
+  AxisLimits limits;
+  const std::string_view unit = rotary ? "deg" : "mm";
+  const double bound = rotary ? max_rotary_limit : max_linear_travel;
+  if (rotary && axis.has("cyclic")) {
+    SUBFEED_TRY_ASSIGN(limits.cyclic, axis.boolean("cyclic"));
+  }
+  if (limits.cyclic) {
+    for (const auto key : {"min", "max"}) {
+      if (axis.has(key)) {
+        return axis.invalid(key, "a cyclic axis has no travel limits");
+      }
+    }
+  } else {
+    SUBFEED_TRY_ASSIGN(limits.min, number_in(axis, "min", -bound, bound, unit));
+    SUBFEED_TRY_ASSIGN(limits.max, number_in(axis, "max", -bound, bound, unit));
+    if (limits.min >= limits.max) {
+      return axis.invalid("max", "must be greater than min");
+    }
+  }
+  SUBFEED_TRY_ASSIGN(limits.max_feed, number_in(axis, "max_feed", 1e-3, max_feed_limit,
+                                                rotary ? "deg/min" : "mm/min"));
+  SUBFEED_TRY(axis.finish());
+  return limits;
+}
+
+Expected<AxisSet> read_axes(TomlTableReader& top, KinematicsType type) {
+  SUBFEED_TRY_ASSIGN(auto axes_table, top.table("axes"));
+  const std::string_view letters = type == KinematicsType::xyz ? "xyz" : "xyzac";
+  AxisSet axes;
+  for (const char letter : letters) {
+    const std::string key(1, letter);
+    SUBFEED_TRY_ASSIGN(auto axis_table, axes_table.table(key));
+    const auto index = axis_letters.find(static_cast<char>(std::toupper(letter)));
+    SUBFEED_TRY_ASSIGN(axes[index], read_axis(axis_table, is_rotary_axis(index)));
+  }
+  SUBFEED_TRY(axes_table.finish());
+  return axes;
+}
+
+Expected<int> direction(TomlTableReader& table, std::string_view key) {
+  SUBFEED_TRY_ASSIGN(const long value, table.integer(key));
+  if (value != 1 && value != -1) {
+    return table.invalid(key, "must be 1 (right-hand rule) or -1 (LinuxCNC default)");
+  }
+  return static_cast<int>(value);
+}
+
+Expected<TableTableGeometry> read_table_table(TomlTableReader& top) {
+  SUBFEED_TRY_ASSIGN(auto k, top.table("kinematics"));
+  TableTableGeometry g;
+  SUBFEED_TRY_ASSIGN(const auto pivot, k.numbers("pivot", 3));
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (std::abs(pivot[i]) > max_linear_travel) {
+      return k.invalid("pivot", "coordinate outside the work volume bound of 100000 mm");
+    }
+    g.pivot[i] = pivot[i];
+  }
+  SUBFEED_TRY_ASSIGN(g.y_offset, number_in(k, "y_offset", -max_linear_travel, max_linear_travel, "mm"));
+  SUBFEED_TRY_ASSIGN(g.z_offset, number_in(k, "z_offset", -max_linear_travel, max_linear_travel, "mm"));
+  if (k.has("tool_length")) {
+    SUBFEED_TRY_ASSIGN(g.tool_length, number_in(k, "tool_length", 0.0, 10000.0, "mm"));
+  }
+  SUBFEED_TRY_ASSIGN(g.a_direction, direction(k, "a_direction"));
+  SUBFEED_TRY_ASSIGN(g.c_direction, direction(k, "c_direction"));
+  SUBFEED_TRY(k.finish());
+  return g;
+}
+
+Expected<SerialSettings> read_serial(TomlTableReader& controller, Protocol protocol) {
+  SerialSettings s;
+  if (protocol == Protocol::fanuc) { // the common ISO tape setting, 7E2 with XON/XOFF
+    s = {9600, 7, Parity::even, 2, FlowControl::xon_xoff};
+  }
+  if (!controller.has("serial")) {
+    return s;
+  }
+  SUBFEED_TRY_ASSIGN(auto serial, controller.table("serial"));
+  if (serial.has("baud")) {
+    SUBFEED_TRY_ASSIGN(const long baud, serial.integer("baud"));
+    if (std::ranges::find(standard_bauds, baud) == standard_bauds.end()) {
+      return serial.invalid("baud", std::to_string(baud) + " is not a standard rate (300..921600)");
+    }
+    s.baud = static_cast<int>(baud);
+  }
+  if (serial.has("data_bits")) {
+    SUBFEED_TRY_ASSIGN(s.data_bits, integer_in(serial, "data_bits", 7, 8));
+  }
+  if (serial.has("parity")) {
+    SUBFEED_TRY_ASSIGN(s.parity, from_names<Parity>(serial, "parity", {"none", "even", "odd"}));
+  }
+  if (serial.has("stop_bits")) {
+    SUBFEED_TRY_ASSIGN(s.stop_bits, integer_in(serial, "stop_bits", 1, 2));
+  }
+  if (serial.has("flow_control")) {
+    SUBFEED_TRY_ASSIGN(s.flow_control, from_names<FlowControl>(serial, "flow_control",
+                                                               {"none", "xon-xoff", "rts-cts", "both"}));
+  }
+  SUBFEED_TRY(serial.finish());
+  return s;
+}
+
+Expected<void> read_controller_options(TomlTableReader& c, ControllerSettings& s) {
+  if (c.has("rx_buffer")) {
+    SUBFEED_TRY_ASSIGN(s.rx_buffer, integer_in(c, "rx_buffer", 16, 65536));
+  }
+  if (c.has("line_length")) {
+    SUBFEED_TRY_ASSIGN(s.line_length, integer_in(c, "line_length", 16, 1024));
+  }
+  if (c.has("decimals")) {
+    SUBFEED_TRY_ASSIGN(s.decimals, integer_in(c, "decimals", 0, 6));
+  }
+  if (c.has("tcp")) {
+    SUBFEED_TRY_ASSIGN(s.tcp, c.boolean("tcp"));
+    if (s.tcp && s.dialect == Dialect::grbl) {
+      return c.invalid("tcp", "the grbl dialect has no tool-centre-point control");
+    }
+  }
+  if (c.has("program_number")) {
+    if (s.dialect != Dialect::fanuc) {
+      return c.invalid("program_number", "applies to the fanuc dialect only");
+    }
+    SUBFEED_TRY_ASSIGN(s.program_number, integer_in(c, "program_number", 1, 9999));
+  }
+  return {};
+}
+
+Expected<ControllerSettings> read_controller(TomlTableReader& top) {
+  SUBFEED_TRY_ASSIGN(auto c, top.table("controller"));
+  ControllerSettings s;
+  SUBFEED_TRY_ASSIGN(s.protocol, from_names<Protocol>(c, "protocol", {"grbl", "fanuc"}));
+  s.dialect = s.protocol == Protocol::grbl ? Dialect::grbl : Dialect::fanuc;
+  s.line_length = s.protocol == Protocol::grbl ? 79 : 256;
+  if (c.has("dialect")) {
+    SUBFEED_TRY_ASSIGN(s.dialect, from_names<Dialect>(c, "dialect", {"grbl", "fanuc", "linuxcnc"}));
+  }
+  SUBFEED_TRY(read_controller_options(c, s));
+  SUBFEED_TRY_ASSIGN(s.serial, read_serial(c, s.protocol));
+  SUBFEED_TRY(c.finish());
+  return s;
+}
+
+Expected<MachineConfig> read_config(const toml::table& root, const std::string& source) {
+  TomlTableReader top(root, "", source, 1);
+  MachineConfig config;
+  config.source = source;
+  SUBFEED_TRY_ASSIGN(auto machine, top.table("machine"));
+  SUBFEED_TRY_ASSIGN(config.name, machine.string("name"));
+  if (config.name.empty()) {
+    return machine.invalid("name", "must not be empty");
+  }
+  SUBFEED_TRY_ASSIGN(config.kinematics,
+                     from_names<KinematicsType>(machine, "kinematics", {"xyz", "xyzac-trt"}));
+  SUBFEED_TRY(machine.finish());
+  SUBFEED_TRY_ASSIGN(config.axes, read_axes(top, config.kinematics));
+  if (config.kinematics == KinematicsType::xyzac_trt) {
+    SUBFEED_TRY_ASSIGN(config.table_table, read_table_table(top));
+  } else if (top.has("kinematics")) {
+    return top.invalid("kinematics", "an xyz machine has no rotary geometry");
+  }
+  SUBFEED_TRY_ASSIGN(config.controller, read_controller(top));
+  SUBFEED_TRY(top.finish());
+  return config;
+}
+
+} // namespace
+
+Expected<MachineConfig> parse_machine_config(std::string_view text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    return fail(ErrorCode::bad_input, "TOML syntax: " + std::string(e.description()),
+                {source, static_cast<int>(e.source().begin.line), {}});
+  }
+  return read_config(root, source);
+}
+
+Expected<MachineConfig> load_machine_config(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    return fail(ErrorCode::bad_input, "cannot open machine config", {path.string(), 0, {}});
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_machine_config(text.str(), path.string());
+}
+
+} // namespace subfeed::post

@@ -1,0 +1,97 @@
+#include "sim/pty.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+#include <utility>
+
+namespace subfeed::sim {
+
+namespace {
+
+std::unexpected<Error> os_failure(const std::string& what, const std::string& where) {
+  return fail(ErrorCode::machine_fault, what + ": " + std::strerror(errno), {where, 0, {}});
+}
+
+} // namespace
+
+Expected<Pty> Pty::open() {
+  const int fd = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    return os_failure("posix_openpt", "pty");
+  }
+  Pty pty(fd, {});
+  char name[128] = {};
+  if (::grantpt(fd) != 0 || ::unlockpt(fd) != 0 || ::ptsname_r(fd, name, sizeof name) != 0) {
+    return os_failure("cannot prepare pty", "pty");
+  }
+  pty.slave_path_ = name;
+  termios tio{};
+  if (::tcgetattr(fd, &tio) != 0) {
+    return os_failure("tcgetattr", pty.slave_path_);
+  }
+  ::cfmakeraw(&tio);
+  if (::tcsetattr(fd, TCSANOW, &tio) != 0) {
+    return os_failure("tcsetattr", pty.slave_path_);
+  }
+  return pty;
+}
+
+Pty::Pty(Pty&& other) noexcept
+    : master_(std::exchange(other.master_, -1)), slave_path_(std::move(other.slave_path_)) {}
+
+Pty& Pty::operator=(Pty&& other) noexcept {
+  if (this != &other) {
+    close();
+    master_ = std::exchange(other.master_, -1);
+    slave_path_ = std::move(other.slave_path_);
+  }
+  return *this;
+}
+
+Pty::~Pty() { close(); }
+
+void Pty::close() noexcept {
+  if (master_ >= 0) {
+    ::close(master_);
+    master_ = -1;
+  }
+}
+
+Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
+  pollfd p{master_, POLLIN, 0};
+  const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
+  if (ready < 0) {
+    return errno == EINTR ? Expected<std::size_t>(0) : os_failure("poll", slave_path_);
+  }
+  if (ready == 0) {
+    return 0;
+  }
+  const ssize_t n = ::read(master_, buffer.data(), buffer.size());
+  if (n < 0) {
+    // EIO: the slave side was closed by everyone who had it open.
+    return errno == EIO ? fail(ErrorCode::machine_fault, "the other side closed the port",
+                               {slave_path_, 0, {}})
+                        : os_failure("read", slave_path_);
+  }
+  return static_cast<std::size_t>(n);
+}
+
+Expected<void> Pty::write_all(std::span<const char> bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(master_, bytes.data(), bytes.size());
+    if (n < 0) {
+      if (errno == EINTR) {
+        continue;
+      }
+      return os_failure("write", slave_path_);
+    }
+    bytes = bytes.subspan(static_cast<std::size_t>(n));
+  }
+  return {};
+}
+
+} // namespace subfeed::sim

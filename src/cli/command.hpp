@@ -1,0 +1,23 @@
+#pragma once
+// How a subcommand plugs into the front: it registers its options on the CLI11 app and
+// returns the action to run once parsing succeeded. Actions report through the Logger and
+// return an Error for main to print as one line and turn into the exit code.
+
+#include "base/error.hpp"
+#include "logger.hpp"
+
+#include <functional>
+
+namespace CLI {
+class App;
+}
+
+namespace subfeed::cli {
+
+using Action = std::function<Expected<void>(Logger&)>;
+
+// Each adds one subcommand to `app`; when the user picks it, `chosen` is set to its action.
+void add_inspect_command(CLI::App& app, Action& chosen);
+void add_config_command(CLI::App& app, Action& chosen);
+
+} // namespace subfeed::cli

@@ -1,0 +1,63 @@
+#pragma once
+// The Catmull-Clark limit surface of a validated cage, evaluated exactly (up to the chosen
+// approximation level near irregular features) through OpenSubdiv's Bfr. Every face of the
+// cage with a limit surface gets one patch, parameterised by (u, v) over Bfr's domain for
+// that face (the unit square for quads). Evaluation is const and allocation-free, so one
+// LimitSurface may be shared by threads.
+
+#include "base/error.hpp"
+#include "geometry/cage.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace subfeed::geometry {
+
+struct LimitSample {
+  Eigen::Vector3d point;  // mm
+  Eigen::Vector3d du, dv; // first derivatives
+  Eigen::Vector3d duu, duv, dvv;
+  Eigen::Vector3d normal; // unit, (du x dv) direction: the side the face loops wind toward
+};
+
+// Parameter points and triangles covering one face's domain, from Bfr's tessellation.
+struct FaceTessellation {
+  std::vector<Eigen::Vector2d> uv;
+  std::vector<std::array<int, 3>> triangles; // indices into uv, same winding as the face
+};
+
+// 4 is the least level that matches exact evaluation near extraordinary vertices to
+// rounding (METHOD.md §1); OpenSubdiv's default of 2 is off by up to 4e-3 mm on a unit cube.
+inline constexpr int min_approx_level = 4;
+inline constexpr int max_approx_level = 10;
+
+class LimitSurface {
+public:
+  [[nodiscard]] static Expected<LimitSurface> build(const Cage& cage,
+                                                    int approx_level = min_approx_level);
+
+  LimitSurface(LimitSurface&&) noexcept;
+  LimitSurface& operator=(LimitSurface&&) noexcept;
+  ~LimitSurface();
+
+  [[nodiscard]] int face_count() const;
+  // False for faces without a limit surface (boundary faces when boundary = none).
+  [[nodiscard]] bool has_patch(int face) const;
+  // Vertex count of the cage face, which decides Bfr's parameter domain for it.
+  [[nodiscard]] int face_size(int face) const;
+
+  // (u, v) must lie in the face's domain; a degenerate tangent plane is an error.
+  [[nodiscard]] Expected<LimitSample> evaluate(int face, double u, double v) const;
+
+  // `rate` segments along each edge of the face (1..256); empty for a face without patch.
+  [[nodiscard]] FaceTessellation tessellate(int face, int rate) const;
+
+private:
+  struct Patches;
+  explicit LimitSurface(std::unique_ptr<Patches> patches);
+  std::unique_ptr<Patches> patches_;
+};
+
+} // namespace subfeed::geometry

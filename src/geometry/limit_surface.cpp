@@ -1,0 +1,178 @@
+#include "geometry/limit_surface.hpp"
+
+#include <Eigen/Geometry>
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <opensubdiv/bfr/tessellation.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+
+namespace subfeed::geometry {
+
+namespace osd = OpenSubdiv;
+
+struct LimitSurface::Patches {
+  // One Bfr surface and its patch points (x y z per point) per cage face.
+  std::vector<std::optional<osd::Bfr::Surface<double>>> surfaces;
+  std::vector<std::vector<double>> patch_points;
+  std::vector<int> face_sizes;
+  std::string source;
+};
+
+namespace {
+
+osd::Sdc::Options::VtxBoundaryInterpolation to_sdc(BoundaryInterpolation b) {
+  switch (b) {
+  case BoundaryInterpolation::none:
+    return osd::Sdc::Options::VTX_BOUNDARY_NONE;
+  case BoundaryInterpolation::edge_only:
+    return osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY;
+  case BoundaryInterpolation::edge_and_corner:
+    return osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER;
+  }
+  return osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY;
+}
+
+std::unique_ptr<osd::Far::TopologyRefiner> make_refiner(const Cage& cage) {
+  std::vector<int> crease_pairs;
+  std::vector<float> crease_weights;
+  for (const Crease& c : cage.creases) {
+    crease_pairs.insert(crease_pairs.end(), {c.v0, c.v1});
+    crease_weights.push_back(static_cast<float>(c.sharpness));
+  }
+  std::vector<int> corner_vertices;
+  std::vector<float> corner_weights;
+  for (const Corner& c : cage.corners) {
+    corner_vertices.push_back(c.vertex);
+    corner_weights.push_back(static_cast<float>(c.sharpness));
+  }
+  osd::Far::TopologyDescriptor desc;
+  desc.numVertices = cage.vertex_count();
+  desc.numFaces = cage.face_count();
+  desc.numVertsPerFace = cage.face_sizes.data();
+  desc.vertIndicesPerFace = cage.face_indices.data();
+  desc.numCreases = static_cast<int>(crease_weights.size());
+  desc.creaseVertexIndexPairs = crease_pairs.data();
+  desc.creaseWeights = crease_weights.data();
+  desc.numCorners = static_cast<int>(corner_weights.size());
+  desc.cornerVertexIndices = corner_vertices.data();
+  desc.cornerWeights = corner_weights.data();
+
+  osd::Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(to_sdc(cage.boundary));
+  using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+  return std::unique_ptr<osd::Far::TopologyRefiner>(
+      Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
+}
+
+std::vector<double> flat_positions(const Cage& cage) {
+  std::vector<double> flat;
+  flat.reserve(cage.positions.size() * 3);
+  for (const auto& p : cage.positions) {
+    flat.insert(flat.end(), {p.x(), p.y(), p.z()});
+  }
+  return flat;
+}
+
+} // namespace
+
+Expected<LimitSurface> LimitSurface::build(const Cage& cage, int approx_level) {
+  if (approx_level < min_approx_level || approx_level > max_approx_level) {
+    return fail(ErrorCode::bad_input,
+                "approximation level " + std::to_string(approx_level) + " is outside " +
+                    std::to_string(min_approx_level) + ".." + std::to_string(max_approx_level),
+                {cage.source, 0, {}});
+  }
+  const auto refiner = make_refiner(cage);
+  if (!refiner) {
+    return fail(ErrorCode::bad_input, "OpenSubdiv rejected the cage topology", {cage.source, 0, {}});
+  }
+  osd::Bfr::RefinerSurfaceFactory<>::Options options;
+  options.SetApproxLevelSmooth(approx_level);
+  options.SetApproxLevelSharp(approx_level);
+  const osd::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
+
+  auto patches = std::make_unique<Patches>();
+  patches->source = cage.source;
+  patches->face_sizes = cage.face_sizes;
+  patches->surfaces.resize(cage.face_sizes.size());
+  patches->patch_points.resize(cage.face_sizes.size());
+  const std::vector<double> mesh_points = flat_positions(cage);
+  const osd::Bfr::Surface<double>::PointDescriptor xyz(3);
+  for (int f = 0; f < cage.face_count(); ++f) {
+    osd::Bfr::Surface<double> surface;
+    if (!factory.InitVertexSurface<double>(f, &surface)) {
+      continue; // a hole: no limit surface for this face
+    }
+    auto& points = patches->patch_points[f];
+    points.resize(static_cast<std::size_t>(surface.GetNumPatchPoints()) * 3);
+    surface.PreparePatchPoints(mesh_points.data(), xyz, points.data(), xyz);
+    patches->surfaces[f] = surface;
+  }
+  return LimitSurface(std::move(patches));
+}
+
+LimitSurface::LimitSurface(std::unique_ptr<Patches> patches) : patches_(std::move(patches)) {}
+LimitSurface::LimitSurface(LimitSurface&&) noexcept = default;
+LimitSurface& LimitSurface::operator=(LimitSurface&&) noexcept = default;
+LimitSurface::~LimitSurface() = default;
+
+int LimitSurface::face_count() const { return static_cast<int>(patches_->surfaces.size()); }
+
+bool LimitSurface::has_patch(int face) const {
+  return face >= 0 && face < face_count() && patches_->surfaces[face].has_value();
+}
+
+int LimitSurface::face_size(int face) const { return patches_->face_sizes.at(face); }
+
+Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const {
+  if (!has_patch(face)) {
+    return fail(ErrorCode::bad_input, "face " + std::to_string(face + 1) + " has no limit surface",
+                {patches_->source, 0, {}});
+  }
+  const auto& surface = *patches_->surfaces[face];
+  const double uv[2] = {u, v};
+  LimitSample s;
+  surface.Evaluate(uv, patches_->patch_points[face].data(),
+                   osd::Bfr::Surface<double>::PointDescriptor(3), s.point.data(), s.du.data(),
+                   s.dv.data(), s.duu.data(), s.duv.data(), s.dvv.data());
+  const Eigen::Vector3d cross = s.du.cross(s.dv);
+  const double length = cross.norm();
+  if (!(length > 1e-14 * std::max(1.0, s.du.norm() * s.dv.norm()))) {
+    return fail(ErrorCode::bad_input,
+                "degenerate tangent plane on face " + std::to_string(face + 1) + " at (" +
+                    std::to_string(u) + ", " + std::to_string(v) + ")",
+                {patches_->source, 0, {}});
+  }
+  s.normal = cross / length;
+  return s;
+}
+
+} // namespace subfeed::geometry
+
+namespace subfeed::geometry {
+
+FaceTessellation LimitSurface::tessellate(int face, int rate) const {
+  FaceTessellation out;
+  if (!has_patch(face)) {
+    return out;
+  }
+  const osd::Bfr::Tessellation tess(patches_->surfaces[face]->GetParameterization(),
+                                    std::clamp(rate, 1, 256),
+                                    osd::Bfr::Tessellation::Options().SetFacetSize(3));
+  std::vector<double> coords(static_cast<std::size_t>(tess.GetNumCoords()) * 2);
+  tess.GetCoords(coords.data());
+  out.uv.reserve(coords.size() / 2);
+  for (std::size_t i = 0; i < coords.size(); i += 2) {
+    out.uv.emplace_back(coords[i], coords[i + 1]);
+  }
+  out.triangles.resize(static_cast<std::size_t>(tess.GetNumFacets()));
+  tess.GetFacets(out.triangles.front().data());
+  return out;
+}
+
+} // namespace subfeed::geometry
