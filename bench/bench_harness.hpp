@@ -11,8 +11,7 @@
 namespace subfeed::bench {
 
 // Seconds for the fastest of `repetitions` calls of `work`.
-template <class Work>
-double best_seconds(int repetitions, Work&& work) {
+template <class Work> double best_seconds(int repetitions, Work&& work) {
   double best = 1e300;
   for (int i = 0; i < repetitions; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -42,8 +41,7 @@ inline void report(const Figure& f) {
 }
 
 // Keeps the optimiser from deleting work whose result is otherwise unused.
-template <class T>
-void keep(const T& value) {
+template <class T> void keep(const T& value) {
   asm volatile("" : : "g"(&value) : "memory");
 }
 

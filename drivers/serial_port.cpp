@@ -35,7 +35,9 @@ constexpr std::array<BaudCode, 13> baud_codes{{{300, B300},
                                                {460800, B460800},
                                                {921600, B921600}}};
 
-std::string os_error() { return std::strerror(errno); }
+std::string os_error() {
+  return std::strerror(errno);
+}
 
 bool set_framing(termios& tio, const SerialOptions& o) {
   tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB | PARODD | CSTOPB | CRTSCTS);
@@ -111,7 +113,9 @@ SerialPort& SerialPort::operator=(SerialPort&& other) noexcept {
   return *this;
 }
 
-SerialPort::~SerialPort() { close(); }
+SerialPort::~SerialPort() {
+  close();
+}
 
 void SerialPort::close() noexcept {
   if (fd_ >= 0) {

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -14,7 +14,9 @@ namespace subfeed::post {
 std::string_view to_string(KinematicsType type) {
   return type == KinematicsType::xyz ? "xyz" : "xyzac-trt";
 }
-std::string_view to_string(Protocol protocol) { return protocol == Protocol::grbl ? "grbl" : "fanuc"; }
+std::string_view to_string(Protocol protocol) {
+  return protocol == Protocol::grbl ? "grbl" : "fanuc";
+}
 std::string_view to_string(Dialect dialect) {
   constexpr std::array<std::string_view, 3> names{"grbl", "fanuc", "linuxcnc"};
   return names[static_cast<std::size_t>(dialect)];
@@ -128,8 +130,10 @@ Expected<TableTableGeometry> read_table_table(TomlTableReader& top) {
     }
     g.pivot[i] = pivot[i];
   }
-  SUBFEED_TRY_ASSIGN(g.y_offset, number_in(k, "y_offset", -max_linear_travel, max_linear_travel, "mm"));
-  SUBFEED_TRY_ASSIGN(g.z_offset, number_in(k, "z_offset", -max_linear_travel, max_linear_travel, "mm"));
+  SUBFEED_TRY_ASSIGN(g.y_offset,
+                     number_in(k, "y_offset", -max_linear_travel, max_linear_travel, "mm"));
+  SUBFEED_TRY_ASSIGN(g.z_offset,
+                     number_in(k, "z_offset", -max_linear_travel, max_linear_travel, "mm"));
   if (k.has("tool_length")) {
     SUBFEED_TRY_ASSIGN(g.tool_length, number_in(k, "tool_length", 0.0, 10000.0, "mm"));
   }
@@ -165,8 +169,9 @@ Expected<SerialSettings> read_serial(TomlTableReader& controller, Protocol proto
     SUBFEED_TRY_ASSIGN(s.stop_bits, integer_in(serial, "stop_bits", 1, 2));
   }
   if (serial.has("flow_control")) {
-    SUBFEED_TRY_ASSIGN(s.flow_control, from_names<FlowControl>(serial, "flow_control",
-                                                               {"none", "xon-xoff", "rts-cts", "both"}));
+    SUBFEED_TRY_ASSIGN(
+        s.flow_control,
+        from_names<FlowControl>(serial, "flow_control", {"none", "xon-xoff", "rts-cts", "both"}));
   }
   SUBFEED_TRY(serial.finish());
   return s;

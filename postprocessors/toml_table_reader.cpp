@@ -51,7 +51,9 @@ TomlTableReader::TomlTableReader(const toml::table& table, std::string prefix, s
                                  int line)
     : table_(&table), prefix_(std::move(prefix)), file_(std::move(file)), line_(line) {}
 
-bool TomlTableReader::has(std::string_view key) const { return table_->contains(key); }
+bool TomlTableReader::has(std::string_view key) const {
+  return table_->contains(key);
+}
 
 Where TomlTableReader::where(std::string_view key) const {
   const toml::node* node = table_->get(key);
@@ -64,7 +66,8 @@ std::unexpected<Error> TomlTableReader::invalid(std::string_view key, std::strin
 }
 
 std::unexpected<Error> TomlTableReader::invalid_table(std::string message) const {
-  std::string key = prefix_.empty() ? std::string("(top level)") : prefix_.substr(0, prefix_.size() - 1);
+  std::string key =
+      prefix_.empty() ? std::string("(top level)") : prefix_.substr(0, prefix_.size() - 1);
   return fail(ErrorCode::bad_input, std::move(message), {file_, line_, std::move(key)});
 }
 
@@ -187,8 +190,9 @@ Expected<std::string> TomlTableReader::choice(std::string_view key,
 Expected<void> TomlTableReader::finish() const {
   for (const auto& [key, node] : *table_) {
     if (!used_.contains(key.str())) {
-      return fail(ErrorCode::bad_input, "unknown key",
-                  {file_, static_cast<int>(key.source().begin.line), prefix_ + std::string(key.str())});
+      return fail(
+          ErrorCode::bad_input, "unknown key",
+          {file_, static_cast<int>(key.source().begin.line), prefix_ + std::string(key.str())});
     }
   }
   return {};

@@ -52,7 +52,9 @@ Pty& Pty::operator=(Pty&& other) noexcept {
   return *this;
 }
 
-Pty::~Pty() { close(); }
+Pty::~Pty() {
+  close();
+}
 
 void Pty::close() noexcept {
   if (master_ >= 0) {

@@ -9,7 +9,8 @@ namespace {
 // A message built from file contents may carry control characters; a one-line report
 // must not, or a hostile file could forge extra log lines.
 std::string single_line(std::string text) {
-  std::ranges::replace_if(text, [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::ranges::replace_if(
+      text, [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return text;
 }
 
@@ -31,7 +32,9 @@ std::string Error::describe() const {
   return single_line(std::move(out));
 }
 
-int exit_code(ErrorCode code) { return static_cast<int>(code); }
+int exit_code(ErrorCode code) {
+  return static_cast<int>(code);
+}
 
 std::unexpected<Error> fail(ErrorCode code, std::string message, Where where) {
   return std::unexpected(Error{code, std::move(message), std::move(where)});

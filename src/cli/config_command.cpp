@@ -34,17 +34,19 @@ void describe(const post::MachineConfig& m, Logger& log) {
   }
   if (m.table_table) {
     const auto& g = *m.table_table;
-    log.info(fmt::format("  pivot ({}, {}, {}) mm, y offset {} mm, z offset {} mm, tool length {} mm, "
-                         "A direction {:+d}, C direction {:+d}",
-                         g.pivot[0], g.pivot[1], g.pivot[2], g.y_offset, g.z_offset, g.tool_length,
-                         g.a_direction, g.c_direction));
+    log.info(
+        fmt::format("  pivot ({}, {}, {}) mm, y offset {} mm, z offset {} mm, tool length {} mm, "
+                    "A direction {:+d}, C direction {:+d}",
+                    g.pivot[0], g.pivot[1], g.pivot[2], g.y_offset, g.z_offset, g.tool_length,
+                    g.a_direction, g.c_direction));
   }
   const auto& s = c.serial;
-  log.info(fmt::format("  serial {} baud {}{}{} flow {}; line length {}, {} decimals, rx buffer {}{}",
-                       s.baud, s.data_bits, "NEO"[static_cast<int>(s.parity)], s.stop_bits,
-                       post::to_string(s.flow_control), c.line_length, c.decimals,
-                       c.rx_buffer ? fmt::format("{} bytes", *c.rx_buffer) : "from controller",
-                       c.tcp ? ", TCP control" : ""));
+  log.info(
+      fmt::format("  serial {} baud {}{}{} flow {}; line length {}, {} decimals, rx buffer {}{}",
+                  s.baud, s.data_bits, "NEO"[static_cast<int>(s.parity)], s.stop_bits,
+                  post::to_string(s.flow_control), c.line_length, c.decimals,
+                  c.rx_buffer ? fmt::format("{} bytes", *c.rx_buffer) : "from controller",
+                  c.tcp ? ", TCP control" : ""));
 }
 
 Expected<void> check_configs(const std::vector<std::string>& files, Logger& log) {
@@ -72,10 +74,11 @@ Expected<void> check_configs(const std::vector<std::string>& files, Logger& log)
 void add_config_command(CLI::App& app, Action& chosen) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("config", "Validate machine configs and show what they say");
-  cmd->add_option("machine", *files, "Machine config files (TOML)")->required()->type_name("M.toml");
-  cmd->callback([&chosen, files] {
-    chosen = [files](Logger& log) { return check_configs(*files, log); };
-  });
+  cmd->add_option("machine", *files, "Machine config files (TOML)")
+      ->required()
+      ->type_name("M.toml");
+  cmd->callback(
+      [&chosen, files] { chosen = [files](Logger& log) { return check_configs(*files, log); }; });
 }
 
 } // namespace subfeed::cli

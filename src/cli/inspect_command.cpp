@@ -56,7 +56,8 @@ Expected<void> inspect(const InspectOptions& options, Logger& log) {
 
 void add_inspect_command(CLI::App& app, Action& chosen) {
   auto options = std::make_shared<InspectOptions>();
-  CLI::App* cmd = app.add_subcommand("inspect", "Check a control cage and report its limit surface");
+  CLI::App* cmd =
+      app.add_subcommand("inspect", "Check a control cage and report its limit surface");
   cmd->add_option("cage", options->cage, "Control cage (Wavefront OBJ, mm)")
       ->required()
       ->type_name("CAGE.obj");
@@ -64,9 +65,8 @@ void add_inspect_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
   cmd->add_option("--samples", options->samples, "Samples per face edge for extent and area")
       ->check(CLI::Range(1, 256));
-  cmd->callback([&chosen, options] {
-    chosen = [options](Logger& log) { return inspect(*options, log); };
-  });
+  cmd->callback(
+      [&chosen, options] { chosen = [options](Logger& log) { return inspect(*options, log); }; });
 }
 
 } // namespace subfeed::cli

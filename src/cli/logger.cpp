@@ -13,14 +13,16 @@ Logger::Logger(Verbosity verbosity, std::ostream& out, std::ostream& err)
 Expected<void> Logger::open_log(const std::filesystem::path& path) {
   log_.open(path, std::ios::app);
   if (!log_) {
-    return fail(ErrorCode::bad_input, "cannot open log file for appending", {path.string(), 0, "--log"});
+    return fail(ErrorCode::bad_input, "cannot open log file for appending",
+                {path.string(), 0, "--log"});
   }
   return {};
 }
 
 void Logger::to_log(std::string_view level, std::string_view line) {
   if (log_.is_open()) {
-    const auto now = std::chrono::floor<std::chrono::milliseconds>(std::chrono::system_clock::now());
+    const auto now =
+        std::chrono::floor<std::chrono::milliseconds>(std::chrono::system_clock::now());
     log_ << fmt::format("{:%FT%T}Z {} {}\n", now, level, line) << std::flush;
   }
 }

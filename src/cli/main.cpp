@@ -20,7 +20,8 @@ struct GlobalOptions {
 void add_global_options(CLI::App& app, GlobalOptions& options) {
   app.set_version_flag("--version", std::string("subfeed ") + SUBFEED_VERSION);
   auto* verbose = app.add_flag("-v,--verbose", options.verbose, "Say more about what happens");
-  app.add_flag("--quiet", options.quiet, "Print nothing but errors and warnings")->excludes(verbose);
+  app.add_flag("--quiet", options.quiet, "Print nothing but errors and warnings")
+      ->excludes(verbose);
   app.add_option("--log", options.log_file, "Append a timestamped log of everything to FILE")
       ->type_name("FILE");
 }

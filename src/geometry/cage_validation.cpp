@@ -62,7 +62,8 @@ Expected<void> check_faces(const Cage& cage) {
     const auto [it, inserted] = seen.emplace(std::move(key), cage.face_lines[f]);
     if (!inserted) {
       return at_line(cage, cage.face_lines[f],
-                     "repeated face: same vertices as the face on line " + std::to_string(it->second));
+                     "repeated face: same vertices as the face on line " +
+                         std::to_string(it->second));
     }
   }
   return {};
@@ -84,8 +85,7 @@ Expected<void> check_edges(const Cage& cage, std::unordered_map<std::uint64_t, E
       const bool forward = a < b;
       const std::string name = "edge " + std::to_string(a + 1) + "-" + std::to_string(b + 1);
       if (use.faces == 2) {
-        return at_line(cage, cage.face_lines[f],
-                       "non-manifold " + name + ": a third face uses it");
+        return at_line(cage, cage.face_lines[f], "non-manifold " + name + ": a third face uses it");
       }
       if (use.faces == 1 && use.first_forward == forward) {
         return at_line(cage, cage.face_lines[f],
@@ -131,18 +131,19 @@ Expected<void> check_tags(const Cage& cage,
   const int n = cage.vertex_count();
   for (const Crease& c : cage.creases) {
     if (c.v0 < 0 || c.v0 >= n || c.v1 < 0 || c.v1 >= n) {
-      return at_line(cage, c.line, "crease vertex out of range (0-based, " + std::to_string(n) +
-                                       " vertices)");
+      return at_line(cage, c.line,
+                     "crease vertex out of range (0-based, " + std::to_string(n) + " vertices)");
     }
     if (!edges.contains(edge_key(c.v0, c.v1))) {
-      return at_line(cage, c.line, "crease " + std::to_string(c.v0) + "-" + std::to_string(c.v1) +
-                                       " is not an edge of the cage");
+      return at_line(cage, c.line,
+                     "crease " + std::to_string(c.v0) + "-" + std::to_string(c.v1) +
+                         " is not an edge of the cage");
     }
   }
   for (const Corner& c : cage.corners) {
     if (c.vertex < 0 || c.vertex >= n) {
-      return at_line(cage, c.line, "corner vertex out of range (0-based, " + std::to_string(n) +
-                                       " vertices)");
+      return at_line(cage, c.line,
+                     "corner vertex out of range (0-based, " + std::to_string(n) + " vertices)");
     }
   }
   return {};

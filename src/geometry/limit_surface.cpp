@@ -89,7 +89,8 @@ Expected<LimitSurface> LimitSurface::build(const Cage& cage, int approx_level) {
   }
   const auto refiner = make_refiner(cage);
   if (!refiner) {
-    return fail(ErrorCode::bad_input, "OpenSubdiv rejected the cage topology", {cage.source, 0, {}});
+    return fail(ErrorCode::bad_input, "OpenSubdiv rejected the cage topology",
+                {cage.source, 0, {}});
   }
   osd::Bfr::RefinerSurfaceFactory<>::Options options;
   options.SetApproxLevelSmooth(approx_level);
@@ -121,13 +122,17 @@ LimitSurface::LimitSurface(LimitSurface&&) noexcept = default;
 LimitSurface& LimitSurface::operator=(LimitSurface&&) noexcept = default;
 LimitSurface::~LimitSurface() = default;
 
-int LimitSurface::face_count() const { return static_cast<int>(patches_->surfaces.size()); }
+int LimitSurface::face_count() const {
+  return static_cast<int>(patches_->surfaces.size());
+}
 
 bool LimitSurface::has_patch(int face) const {
   return face >= 0 && face < face_count() && patches_->surfaces[face].has_value();
 }
 
-int LimitSurface::face_size(int face) const { return patches_->face_sizes.at(face); }
+int LimitSurface::face_size(int face) const {
+  return patches_->face_sizes.at(face);
+}
 
 Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const {
   if (!has_patch(face)) {

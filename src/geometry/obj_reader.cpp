@@ -164,7 +164,8 @@ private:
     if (name == "interpolateboundary") {
       return interpolate_boundary(ints);
     }
-    return error("unsupported tag '" + std::string(name) + "' (crease, corner, interpolateboundary)");
+    return error("unsupported tag '" + std::string(name) +
+                 "' (crease, corner, interpolateboundary)");
   }
 
   Expected<void> tag_arguments(const std::vector<std::string_view>& words, std::vector<long>& ints,

@@ -6,7 +6,8 @@ using subfeed::Error;
 using subfeed::ErrorCode;
 
 TEST_CASE("an error describes itself as file:line: key: message") {
-  const Error e{ErrorCode::bad_input, "expected a number, got a string", {"m.toml", 12, "axes.x.min"}};
+  const Error e{
+      ErrorCode::bad_input, "expected a number, got a string", {"m.toml", 12, "axes.x.min"}};
   CHECK(e.describe() == "m.toml:12: axes.x.min: expected a number, got a string");
 }
 

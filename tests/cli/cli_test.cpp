@@ -15,7 +15,9 @@ namespace {
 const std::string bin = SUBFEED_BIN;
 const std::string source_dir = SUBFEED_SOURCE_DIR;
 
-long count_lines(const std::string& text) { return std::ranges::count(text, '\n'); }
+long count_lines(const std::string& text) {
+  return std::ranges::count(text, '\n');
+}
 
 } // namespace
 
@@ -39,9 +41,13 @@ TEST_CASE("every subcommand has --help") {
 }
 
 TEST_CASE("usage errors exit 1 with one line") {
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {bin}, {bin, "frobnicate"}, {bin, "--bogus", "inspect", "x.obj"}, {bin, "inspect"},
-           {bin, "-v", "--quiet", "config", "x.toml"}, {bin, "inspect", "x.obj", "--level", "2"}}) {
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{bin},
+                                             {bin, "frobnicate"},
+                                             {bin, "--bogus", "inspect", "x.obj"},
+                                             {bin, "inspect"},
+                                             {bin, "-v", "--quiet", "config", "x.toml"},
+                                             {bin, "inspect", "x.obj", "--level", "2"}}) {
     const auto r = run_process(args);
     CHECK(r.exit_code == 1);
     CHECK(count_lines(r.err) == 1);
@@ -69,7 +75,8 @@ TEST_CASE("a malformed machine config exits 2 naming file and key in one line") 
 }
 
 TEST_CASE("inspect reports the sample seat's extent") {
-  const auto r = run_process({bin, "inspect", source_dir + "/examples/seat.obj", "--samples", "64"});
+  const auto r =
+      run_process({bin, "inspect", source_dir + "/examples/seat.obj", "--samples", "64"});
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
   CHECK(r.out.find("(size 17.6700 mm)") != std::string::npos);
@@ -104,7 +111,8 @@ TEST_CASE("an unwritable --log is a bad-input error naming it") {
   const auto r = run_process({bin, "--log", "/nonexistent/dir/run.log", "config",
                               source_dir + "/configs/grbl-router-3axis.toml"});
   CHECK(r.exit_code == 2);
-  CHECK(r.err == "subfeed: error: /nonexistent/dir/run.log: --log: cannot open log file for appending\n");
+  CHECK(r.err ==
+        "subfeed: error: /nonexistent/dir/run.log: --log: cannot open log file for appending\n");
 }
 
 TEST_CASE("subfeed-sim has --help and --version") {

@@ -45,8 +45,12 @@ void check_quadric(const LimitSurface& surface, double a, double b) {
 } // namespace
 
 TEST_CASE("the limit surface of a quadric grid cage is the quadric on interior faces") {
-  SECTION("plane") { check_quadric(LimitSurface::build(grid_cage(n, g, 0, 0)).value(), 0, 0); }
-  SECTION("bowl") { check_quadric(LimitSurface::build(grid_cage(n, g, 0.02, 0.01)).value(), 0.02, 0.01); }
+  SECTION("plane") {
+    check_quadric(LimitSurface::build(grid_cage(n, g, 0, 0)).value(), 0, 0);
+  }
+  SECTION("bowl") {
+    check_quadric(LimitSurface::build(grid_cage(n, g, 0.02, 0.01)).value(), 0.02, 0.01);
+  }
   SECTION("saddle") {
     check_quadric(LimitSurface::build(grid_cage(n, g, 0.02, -0.02)).value(), 0.02, -0.02);
   }
@@ -72,7 +76,8 @@ TEST_CASE("an infinitely sharp crease pulls the limit onto the crease curve") {
     cage.positions[mid * n + i].z() = h;
   }
   const auto smooth = LimitSurface::build(cage).value();
-  CHECK(smooth.evaluate(grid_face(n, 3, mid), 0.5, 0.0)->point.z() == Approx(4.0 / 6.0 * h).margin(1e-12));
+  CHECK(smooth.evaluate(grid_face(n, 3, mid), 0.5, 0.0)->point.z() ==
+        Approx(4.0 / 6.0 * h).margin(1e-12));
   for (int i = 0; i + 1 < n; ++i) {
     cage.creases.push_back({mid * n + i, mid * n + i + 1, 10.0, 0});
   }

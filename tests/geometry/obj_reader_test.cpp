@@ -35,7 +35,8 @@ TEST_CASE("a valid cage is read with its faces, lines and tags") {
   CHECK(cage->vertex_count() == 6);
   CHECK(cage->face_count() == 2);
   CHECK(cage->face_lines == std::vector<int>{9, 10});
-  CHECK(std::vector<int>(cage->face(1).begin(), cage->face(1).end()) == std::vector<int>{1, 2, 5, 4});
+  CHECK(std::vector<int>(cage->face(1).begin(), cage->face(1).end()) ==
+        std::vector<int>{1, 2, 5, 4});
   REQUIRE(cage->creases.size() == 1);
   CHECK(cage->creases[0].v0 == 1);
   CHECK(cage->creases[0].v1 == 4);
@@ -49,7 +50,8 @@ TEST_CASE("a valid cage is read with its faces, lines and tags") {
 TEST_CASE("face vertex forms and negative indices resolve to the same vertices") {
   const auto cage = parse("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4/1/1 2//3 3/2 -1\n");
   REQUIRE(cage);
-  CHECK(std::vector<int>(cage->face(0).begin(), cage->face(0).end()) == std::vector<int>{0, 1, 2, 3});
+  CHECK(std::vector<int>(cage->face(0).begin(), cage->face(0).end()) ==
+        std::vector<int>{0, 1, 2, 3});
 }
 
 TEST_CASE("n-gons and triangles are accepted") {
@@ -98,17 +100,21 @@ TEST_CASE("non-manifold and inconsistently oriented cages are errors") {
 }
 
 TEST_CASE("bad tags are errors naming the tag's line") {
-  expect_error(two_quads + "t crease 2/1/0 0 2 1\n", "part.obj:9: crease 0-2 is not an edge of the cage");
+  expect_error(two_quads + "t crease 2/1/0 0 2 1\n",
+               "part.obj:9: crease 0-2 is not an edge of the cage");
   expect_error(two_quads + "t crease 2/1/0 0 9 1\n",
                "part.obj:9: crease vertex out of range (0-based, 6 vertices)");
-  expect_error(two_quads + "t crease 2/1/0 1 4 -1\n", "part.obj:9: sharpness -1.000000 is negative");
+  expect_error(two_quads + "t crease 2/1/0 1 4 -1\n",
+               "part.obj:9: sharpness -1.000000 is negative");
   expect_error(two_quads + "t crease 3/1/0 1 4 5 1\n",
                "part.obj:9: crease needs vertex pairs and one sharpness, or one per pair");
-  expect_error(two_quads + "t crease 2/1/0 1 4\n", "part.obj:9: tag declares 3 arguments but has 2");
+  expect_error(two_quads + "t crease 2/1/0 1 4\n",
+               "part.obj:9: tag declares 3 arguments but has 2");
   expect_error(two_quads + "t corner 1/1/0 6 1\n",
                "part.obj:9: corner vertex out of range (0-based, 6 vertices)");
-  expect_error(two_quads + "t interpolateboundary 1/0/0 3\n",
-               "part.obj:9: interpolateboundary takes one integer: 0 none, 1 edge only, 2 edge and corner");
+  expect_error(
+      two_quads + "t interpolateboundary 1/0/0 3\n",
+      "part.obj:9: interpolateboundary takes one integer: 0 none, 1 edge only, 2 edge and corner");
   expect_error(two_quads + "t holes 1/0/0 0\n",
                "part.obj:9: unsupported tag 'holes' (crease, corner, interpolateboundary)");
   expect_error(two_quads + "t crease 2-1-0 1 4 1\n",

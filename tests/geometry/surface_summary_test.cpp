@@ -31,7 +31,8 @@ TEST_CASE("the cube has eight extraordinary vertices and no boundary") {
 }
 
 TEST_CASE("the sample seat has the paper's dimensions") {
-  const auto cage = subfeed::geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/seat.obj");
+  const auto cage =
+      subfeed::geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/seat.obj");
   REQUIRE(cage);
   const auto surface = LimitSurface::build(*cage).value();
   const auto s = subfeed::geometry::summarize(*cage, surface, 64).value();

@@ -93,7 +93,8 @@ TEST_CASE("unknown keys are errors naming file, line and key") {
   expect_error(replace(trt, "y_offset = 4.0", "y_offset = 4.0\nyofset = 1"),
                "m.toml:7: kinematics.yofset: unknown key");
   expect_error(trt + "[spindle]\nmax_rpm = 24000\n", "m.toml:31: spindle: unknown key");
-  expect_error(trt + "[axes.b]\nmin = 0\nmax = 1\nmax_feed = 1\n", "m.toml:31: axes.b: unknown key");
+  expect_error(trt + "[axes.b]\nmin = 0\nmax = 1\nmax_feed = 1\n",
+               "m.toml:31: axes.b: unknown key");
 }
 
 TEST_CASE("wrong types are errors naming the key and both types") {
@@ -106,7 +107,8 @@ TEST_CASE("wrong types are errors naming the key and both types") {
                "m.toml:8: kinematics.a_direction: expected an integer, got a number");
   expect_error(replace(trt, "pivot = [1.0, 2.0, 3.0]", "pivot = [1.0, 2.0]"),
                "m.toml:5: kinematics.pivot: expected an array of 3 numbers");
-  expect_error(replace(trt, "[axes.z]\nmin = -100.0\nmax = 0.0\nmax_feed = 1000\n", "") + "[axes]\nz = 5\n",
+  expect_error(replace(trt, "[axes.z]\nmin = -100.0\nmax = 0.0\nmax_feed = 1000\n", "") +
+                   "[axes]\nz = 5\n",
                "m.toml:28: axes.z: expected a table, got an integer");
 }
 
@@ -126,11 +128,13 @@ TEST_CASE("missing required keys are errors naming the key") {
 TEST_CASE("values out of range are errors naming the key and the range") {
   expect_error(replace(trt, "max_feed = 1000", "max_feed = -5"),
                "m.toml:21: axes.z.max_feed: -5 mm/min is outside 0.001..1e+06 mm/min");
-  expect_error(replace(trt, "max = 50.0", "max = -150.0"), "m.toml:24: axes.a.max: must be greater than min");
+  expect_error(replace(trt, "max = 50.0", "max = -150.0"),
+               "m.toml:24: axes.a.max: must be greater than min");
   expect_error(replace(trt, "min = -100.0\nmax = 50.0", "min = -4000.0\nmax = 50.0"),
                "m.toml:23: axes.a.min: -4000 deg is outside -3600..3600 deg");
-  expect_error(replace(trt, "c_direction = 1", "c_direction = 0"),
-               "m.toml:9: kinematics.c_direction: must be 1 (right-hand rule) or -1 (LinuxCNC default)");
+  expect_error(
+      replace(trt, "c_direction = 1", "c_direction = 0"),
+      "m.toml:9: kinematics.c_direction: must be 1 (right-hand rule) or -1 (LinuxCNC default)");
   expect_error(replace(trt, "kinematics = \"xyzac-trt\"", "kinematics = \"xyzbc\""),
                "m.toml:3: machine.kinematics: 'xyzbc' is not one of xyz, xyzac-trt");
   expect_error(trt + "rx_buffer = 8\n", "m.toml:31: controller.rx_buffer: 8 is outside 16..65536");
@@ -138,16 +142,21 @@ TEST_CASE("values out of range are errors naming the key and the range") {
                "m.toml:32: controller.serial.baud: 12345 is not a standard rate (300..921600)");
   expect_error(trt + "[controller.serial]\nparity = \"mark\"\n",
                "m.toml:32: controller.serial.parity: 'mark' is not one of none, even, odd");
-  expect_error(replace(trt, "name = \"test trunnion\"", "name = \"\""), "m.toml:2: machine.name: must not be empty");
+  expect_error(replace(trt, "name = \"test trunnion\"", "name = \"\""),
+               "m.toml:2: machine.name: must not be empty");
 }
 
 TEST_CASE("contradictory settings are errors naming the key") {
   expect_error(replace(trt, "cyclic = true", "cyclic = true\nmin = 0"),
                "m.toml:28: axes.c.min: a cyclic axis has no travel limits");
-  expect_error(trt + "tcp = true\n", "m.toml:31: controller.tcp: the grbl dialect has no tool-centre-point control");
-  expect_error(trt + "program_number = 12\n", "m.toml:31: controller.program_number: applies to the fanuc dialect only");
+  expect_error(trt + "tcp = true\n",
+               "m.toml:31: controller.tcp: the grbl dialect has no tool-centre-point control");
+  expect_error(trt + "program_number = 12\n",
+               "m.toml:31: controller.program_number: applies to the fanuc dialect only");
   const std::string xyz = replace(replace(trt, "xyzac-trt", "xyz"),
-                                  "[axes.a]\nmin = -100.0\nmax = 50.0\nmax_feed = 3600\n[axes.c]\ncyclic = true\nmax_feed = 7200\n", "");
+                                  "[axes.a]\nmin = -100.0\nmax = 50.0\nmax_feed = "
+                                  "3600\n[axes.c]\ncyclic = true\nmax_feed = 7200\n",
+                                  "");
   expect_error(xyz, "m.toml:4: kinematics: an xyz machine has no rotary geometry");
 }
 
@@ -164,7 +173,8 @@ TEST_CASE("a missing config file is named") {
 
 TEST_CASE("every shipped machine config loads") {
   int count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(SUBFEED_SOURCE_DIR) + "/configs")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(SUBFEED_SOURCE_DIR) + "/configs")) {
     if (entry.path().extension() == ".toml") {
       INFO(entry.path());
       const auto config = subfeed::post::load_machine_config(entry.path());

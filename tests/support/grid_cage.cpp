@@ -25,7 +25,9 @@ geometry::Cage grid_cage(int n, double g, double a, double b) {
   return cage;
 }
 
-int grid_face(int n, int i, int j) { return j * (n - 1) + i; }
+int grid_face(int n, int i, int j) {
+  return j * (n - 1) + i;
+}
 
 geometry::Cage cube_cage() {
   geometry::Cage cage;

@@ -40,7 +40,8 @@ public:
   SerialPort& operator=(const SerialPort&) = delete;
   ~SerialPort();
 
-  [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer, std::chrono::milliseconds timeout);
+  [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
+                                           std::chrono::milliseconds timeout);
   [[nodiscard]] Expected<std::size_t> write(std::span<const char> bytes,
                                             std::chrono::milliseconds timeout);
   // Waits until the OS has handed every written byte to the hardware (returns at once on a

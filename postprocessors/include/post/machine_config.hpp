@@ -36,7 +36,9 @@ struct AxisLimits {
 };
 
 // X, Y, Z are linear (mm); A, B, C rotate about them (deg).
-[[nodiscard]] constexpr bool is_rotary_axis(std::size_t index) { return index >= 3; }
+[[nodiscard]] constexpr bool is_rotary_axis(std::size_t index) {
+  return index >= 3;
+}
 
 using AxisSet = std::array<std::optional<AxisLimits>, axis_letters.size()>;
 

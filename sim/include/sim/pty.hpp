@@ -29,7 +29,8 @@ public:
 
   // Bytes that arrived within `timeout`; empty on timeout. An error when the slave side
   // hung up after having been opened, or on an I/O failure.
-  [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer, std::chrono::milliseconds timeout);
+  [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
+                                           std::chrono::milliseconds timeout);
   [[nodiscard]] Expected<void> write_all(std::span<const char> bytes);
 
   // Hangs up: the slave side sees the port vanish.

@@ -34,8 +34,7 @@ struct Error {
 
 [[nodiscard]] int exit_code(ErrorCode code);
 
-template <class T>
-using Expected = std::expected<T, Error>;
+template <class T> using Expected = std::expected<T, Error>;
 
 [[nodiscard]] std::unexpected<Error> fail(ErrorCode code, std::string message, Where where = {});
 
@@ -44,19 +43,19 @@ using Expected = std::expected<T, Error>;
 // Propagation for functions that return Expected<U>: on error, return it unchanged.
 #define SUBFEED_CONCAT_INNER(a, b) a##b
 #define SUBFEED_CONCAT(a, b) SUBFEED_CONCAT_INNER(a, b)
-#define SUBFEED_TRY_ASSIGN_IMPL(tmp, lhs, expr)                                                   \
-  auto tmp = (expr);                                                                             \
-  if (!tmp) {                                                                                    \
-    return std::unexpected(std::move(tmp).error());                                              \
-  }                                                                                              \
+#define SUBFEED_TRY_ASSIGN_IMPL(tmp, lhs, expr)                                                    \
+  auto tmp = (expr);                                                                               \
+  if (!tmp) {                                                                                      \
+    return std::unexpected(std::move(tmp).error());                                                \
+  }                                                                                                \
   lhs = std::move(*tmp)
 // SUBFEED_TRY_ASSIGN(auto x, f()); or SUBFEED_TRY_ASSIGN(config.x, f());
-#define SUBFEED_TRY_ASSIGN(lhs, expr)                                                             \
+#define SUBFEED_TRY_ASSIGN(lhs, expr)                                                              \
   SUBFEED_TRY_ASSIGN_IMPL(SUBFEED_CONCAT(subfeed_try_, __LINE__), lhs, expr)
 // SUBFEED_TRY(f()); for Expected<void>.
-#define SUBFEED_TRY(expr)                                                                         \
-  do {                                                                                           \
-    if (auto subfeed_try_void = (expr); !subfeed_try_void) {                                     \
-      return std::unexpected(std::move(subfeed_try_void).error());                               \
-    }                                                                                            \
+#define SUBFEED_TRY(expr)                                                                          \
+  do {                                                                                             \
+    if (auto subfeed_try_void = (expr); !subfeed_try_void) {                                       \
+      return std::unexpected(std::move(subfeed_try_void).error());                                 \
+    }                                                                                              \
   } while (false)
