@@ -6,6 +6,8 @@
 #include <poll.h>
 #include <termios.h>
 #include <unistd.h>
+#include <algorithm>
+#include <thread>
 #include <utility>
 
 namespace subfeed::sim {
@@ -37,6 +39,13 @@ Expected<Pty> Pty::open() {
   if (::tcsetattr(fd, TCSANOW, &tio) != 0) {
     return os_failure("tcsetattr", pty.slave_path_);
   }
+  // A master whose slave was never opened reports no hang-up, so a first connection could
+  // not be told from none. Opening and closing the slave once puts it in the hung-up state.
+  const int slave = ::open(pty.slave_path_.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+  if (slave < 0) {
+    return os_failure("cannot open the slave side", pty.slave_path_);
+  }
+  ::close(slave);
   return pty;
 }
 
@@ -64,30 +73,46 @@ void Pty::close() noexcept {
 }
 
 Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
+  if (master_ < 0) {
+    std::this_thread::sleep_for(timeout);
+    return 0;
+  }
   pollfd p{master_, POLLIN, 0};
   const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
   if (ready < 0) {
     return errno == EINTR ? Expected<std::size_t>(0) : os_failure("poll", slave_path_);
   }
   if (ready == 0) {
+    connected_ = true; // no hang-up reported: someone has the slave side open
     return 0;
   }
+  if ((p.revents & POLLIN) == 0 && (p.revents & POLLHUP) != 0) {
+    // Nobody has the slave open: poll keeps reporting the hang-up, so wait here instead.
+    connected_ = false;
+    std::this_thread::sleep_for(std::min(timeout, std::chrono::milliseconds(2)));
+    return 0;
+  }
+  connected_ = true;
   const ssize_t n = ::read(master_, buffer.data(), buffer.size());
   if (n < 0) {
-    // EIO: the slave side was closed by everyone who had it open.
-    return errno == EIO ? fail(ErrorCode::machine_fault, "the other side closed the port",
-                               {slave_path_, 0, {}})
-                        : os_failure("read", slave_path_);
+    if (errno == EIO || errno == EAGAIN || errno == EINTR) { // EIO: the slave just closed
+      connected_ = errno != EIO;
+      return 0;
+    }
+    return os_failure("read", slave_path_);
   }
   return static_cast<std::size_t>(n);
 }
 
 Expected<void> Pty::write_all(std::span<const char> bytes) {
   while (!bytes.empty()) {
-    const ssize_t n = ::write(master_, bytes.data(), bytes.size());
+    const ssize_t n = master_ >= 0 ? ::write(master_, bytes.data(), bytes.size()) : -1;
     if (n < 0) {
       if (errno == EINTR) {
         continue;
+      }
+      if (master_ < 0 || errno == EIO) { // nobody listening: the bytes fall off the wire
+        return {};
       }
       return os_failure("write", slave_path_);
     }

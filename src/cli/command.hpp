@@ -19,5 +19,6 @@ using Action = std::function<Expected<void>(Logger&)>;
 // Each adds one subcommand to `app`; when the user picks it, `chosen` is set to its action.
 void add_inspect_command(CLI::App& app, Action& chosen);
 void add_config_command(CLI::App& app, Action& chosen);
+void add_send_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

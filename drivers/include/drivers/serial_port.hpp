@@ -10,6 +10,7 @@
 // simulated controller must be reached through exactly the code path of a real port.
 
 #include "base/error.hpp"
+#include "drivers/transport.hpp"
 
 #include <chrono>
 #include <cstddef>
@@ -29,7 +30,7 @@ struct SerialOptions {
   SerialFlow flow = SerialFlow::none;
 };
 
-class SerialPort {
+class SerialPort final : public Transport {
 public:
   [[nodiscard]] static Expected<SerialPort> open(const std::string& path,
                                                  const SerialOptions& options);
@@ -38,7 +39,7 @@ public:
   SerialPort& operator=(SerialPort&& other) noexcept;
   SerialPort(const SerialPort&) = delete;
   SerialPort& operator=(const SerialPort&) = delete;
-  ~SerialPort();
+  ~SerialPort() override;
 
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout);
@@ -47,8 +48,8 @@ public:
   // Waits until the OS has handed every written byte to the hardware (returns at once on a
   // pty, which has no wire).
   [[nodiscard]] Expected<void> drain();
-  [[nodiscard]] int fd() const { return fd_; }
-  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] int poll_fd() const override { return fd_; }
+  [[nodiscard]] const std::string& name() const override { return path_; }
 
 private:
   SerialPort(int fd, std::string path) : fd_(fd), path_(std::move(path)) {}

@@ -6,6 +6,7 @@
 // side see a hang-up, which is how a vanished port looks to a sender.
 
 #include "base/error.hpp"
+#include "sim/byte_channel.hpp"
 
 #include <chrono>
 #include <cstddef>
@@ -14,7 +15,7 @@
 
 namespace subfeed::sim {
 
-class Pty {
+class Pty final : public ByteChannel {
 public:
   [[nodiscard]] static Expected<Pty> open();
 
@@ -22,25 +23,28 @@ public:
   Pty& operator=(Pty&& other) noexcept;
   Pty(const Pty&) = delete;
   Pty& operator=(const Pty&) = delete;
-  ~Pty();
+  ~Pty() override;
 
   [[nodiscard]] int master_fd() const { return master_; }
   [[nodiscard]] const std::string& slave_path() const { return slave_path_; }
 
-  // Bytes that arrived within `timeout`; empty on timeout. An error when the slave side
-  // hung up after having been opened, or on an I/O failure.
+  // Bytes that arrived within `timeout`; zero on timeout and while no one has the slave
+  // side open. An error only on an I/O failure.
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout);
-  [[nodiscard]] Expected<void> write_all(std::span<const char> bytes);
+  [[nodiscard]] Expected<void> write_all(std::span<const char> bytes) override;
 
   // Hangs up: the slave side sees the port vanish.
-  void close() noexcept;
+  void close() noexcept override;
+  [[nodiscard]] std::string address() const override { return slave_path_; }
+  [[nodiscard]] bool connected() const override { return connected_; }
 
 private:
   Pty(int master, std::string slave_path) : master_(master), slave_path_(std::move(slave_path)) {}
 
   int master_ = -1;
   std::string slave_path_;
+  bool connected_ = false;
 };
 
 } // namespace subfeed::sim

@@ -1,0 +1,120 @@
+#include "sim/tcp_listener.hpp"
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstring>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <thread>
+#include <unistd.h>
+#include <utility>
+
+namespace subfeed::sim {
+
+namespace {
+
+std::unexpected<Error> os_failure(const std::string& what, const std::string& where) {
+  return fail(ErrorCode::machine_fault, what + ": " + std::strerror(errno), {where, 0, {}});
+}
+
+} // namespace
+
+Expected<TcpListener> TcpListener::open(const std::string& host, int port) {
+  const std::string where = host + ":" + std::to_string(port);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (::inet_pton(AF_INET, host.c_str(), &addr.sin_addr) != 1) {
+    return fail(ErrorCode::bad_input, "not an IPv4 address", {where, 0, {}});
+  }
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    return os_failure("socket", where);
+  }
+  TcpListener listener(fd, where);
+  const int yes = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || ::listen(fd, 1) != 0) {
+    return os_failure("cannot listen", where);
+  }
+  socklen_t length = sizeof addr;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &length);
+  listener.address_ = host + ":" + std::to_string(ntohs(addr.sin_port));
+  return listener;
+}
+
+TcpListener::TcpListener(TcpListener&& other) noexcept
+    : listen_(std::exchange(other.listen_, -1)), peer_(std::exchange(other.peer_, -1)),
+      address_(std::move(other.address_)) {}
+
+TcpListener& TcpListener::operator=(TcpListener&& other) noexcept {
+  if (this != &other) {
+    close();
+    listen_ = std::exchange(other.listen_, -1);
+    peer_ = std::exchange(other.peer_, -1);
+    address_ = std::move(other.address_);
+  }
+  return *this;
+}
+
+TcpListener::~TcpListener() { close(); }
+
+void TcpListener::drop_peer() noexcept {
+  if (peer_ >= 0) {
+    ::close(peer_);
+    peer_ = -1;
+  }
+}
+
+void TcpListener::close() noexcept {
+  drop_peer();
+  if (listen_ >= 0) {
+    ::close(listen_);
+    listen_ = -1;
+  }
+}
+
+Expected<std::size_t> TcpListener::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
+  if (listen_ < 0) {
+    std::this_thread::sleep_for(timeout);
+    return 0;
+  }
+  pollfd p{peer_ >= 0 ? peer_ : listen_, POLLIN, 0};
+  const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
+  if (ready <= 0) {
+    return ready < 0 && errno != EINTR ? os_failure("poll", address_) : Expected<std::size_t>(0);
+  }
+  if (peer_ < 0) {
+    peer_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (peer_ >= 0) {
+      const int yes = 1; // replies are tiny and latency matters
+      ::setsockopt(peer_, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+    }
+    return 0;
+  }
+  const ssize_t n = ::recv(peer_, buffer.data(), buffer.size(), 0);
+  if (n <= 0) {
+    drop_peer(); // the sender went away; wait for the next one
+    return 0;
+  }
+  return static_cast<std::size_t>(n);
+}
+
+Expected<void> TcpListener::write_all(std::span<const char> bytes) {
+  while (peer_ >= 0 && !bytes.empty()) {
+    const ssize_t n = ::send(peer_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    if (n < 0) {
+      if (errno == EINTR) {
+        continue;
+      }
+      drop_peer();
+      return {};
+    }
+    bytes = bytes.subspan(static_cast<std::size_t>(n));
+  }
+  return {};
+}
+
+} // namespace subfeed::sim

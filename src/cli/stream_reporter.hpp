@@ -1,0 +1,39 @@
+#pragma once
+// How `send` (and later `run`) shows a stream to its user: a one-line progress display on a
+// terminal (acknowledged/total, %, elapsed, ETA, controller state), JSON events one per line
+// for scripts (--json), or nothing (--quiet). Everything also goes to the --log file.
+
+#include "drivers/grbl_streamer.hpp"
+#include "logger.hpp"
+
+#include <chrono>
+
+namespace subfeed::cli {
+
+class StreamReporter final : public drivers::StreamObserver {
+public:
+  StreamReporter(Logger& log, bool json);
+  ~StreamReporter() override;
+
+  void connected(const drivers::ControllerInfo& info) override;
+  void progress(const drivers::StreamProgress& progress) override;
+  void message(std::string_view line) override;
+  void line_error(const drivers::LineError& error) override;
+  void phase(std::string_view name) override;
+
+  // After the stream: the summary line, or the error as a JSON event.
+  void finished(const drivers::StreamSummary& summary, std::optional<int> baud);
+  void failed(const Error& error);
+
+private:
+  void end_progress_line();
+
+  Logger& log_;
+  bool json_;
+  bool terminal_;
+  bool progress_shown_ = false;
+  std::chrono::steady_clock::time_point last_update_{};
+  std::string last_state_;
+};
+
+} // namespace subfeed::cli
