@@ -73,7 +73,9 @@ private:
     entry.sent_at = Clock::now();
     in_flight_.push_back(entry);
     rx_used_ += entry.bytes;
-    bytes_sent_ += entry.bytes;
+    if (entry.file_line > 0) {
+      bytes_sent_ += entry.bytes; // the program's bytes; the sender's own commands are not
+    }
     return write_bytes(wire);
   }
 
@@ -271,8 +273,10 @@ private:
     if (count == 0) {
       return "";
     }
-    return "; " + std::to_string(count) + " line(s) sent but not run (lines " + std::to_string(first) +
-           (first == last ? "" : "-" + std::to_string(last)) + ")";
+    return "; " + std::to_string(count) + " line(s) sent but not run (" +
+           (first == last ? "line " + std::to_string(first)
+                          : "lines " + std::to_string(first) + "-" + std::to_string(last)) +
+           ")";
   }
 
   // Brings the machine to a safe stop after a fault or a stop command: feed hold, wait for
@@ -588,6 +592,9 @@ private:
   }
 
   void report_progress() {
+    if (connecting_) {
+      return; // nothing to show before the file has been scanned
+    }
     StreamProgress p;
     p.lines_total = lines_total_;
     p.lines_sent = lines_sent_;

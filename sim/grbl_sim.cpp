@@ -84,8 +84,8 @@ public:
   void run(const std::stop_token& stop) {
     last_tick_ = Clock::now();
     while (!stop.stop_requested()) {
-      const bool busy =
-          !planner_.empty() || !outgoing_.empty() || has_complete_line() || booting_until_;
+      const bool busy = !planner_.empty() || !outgoing_.empty() || !wire_out_.empty() ||
+                        has_complete_line() || booting_until_;
       pump_input(busy ? std::chrono::milliseconds(1) : std::chrono::milliseconds(10));
       const auto now = Clock::now();
       tick(std::chrono::duration<double>(now - last_tick_).count());
@@ -127,10 +127,13 @@ private:
       on_connect();
     }
     was_connected_ = channel_->connected();
+    if (n && *n < allowed) {
+      tokens_ = 0.0; // the wire went idle: idle time is not credit for a later burst
+    }
     if (!n || *n == 0) {
       return;
     }
-    tokens_ -= static_cast<double>(*n);
+    tokens_ = std::max(0.0, tokens_ - static_cast<double>(*n));
     const std::lock_guard lock(mutex_);
     for (std::size_t i = 0; i < *n; ++i) {
       on_byte(static_cast<unsigned char>(buffer[i]));
@@ -178,6 +181,11 @@ private:
       break;
     case rt_hold:
       ++stats_.feed_holds;
+      if (last_error_written_) {
+        stats_.error_to_hold_ms.push_back(
+            std::chrono::duration<double, std::milli>(Clock::now() - *last_error_written_).count());
+        last_error_written_.reset();
+      }
       if (!holding_ && !alarm_locked_) {
         holding_ = true;
         hold_done_at_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -197,6 +205,7 @@ private:
     default:
       if (c >= 0x90 && c <= 0x9D) {
         ++stats_.overrides;
+        stats_.override_times.push_back(Clock::now());
         apply_override(c);
       }
       break; // other extended bytes: realtime commands this model ignores, never buffered
@@ -300,6 +309,8 @@ private:
       send("ALARM:" + std::to_string(alarm_reset_in_motion));
     }
     outgoing_.clear();
+    wire_out_.clear();
+    error_ends_.clear();
     power_up();
   }
 
@@ -545,18 +556,41 @@ private:
     outgoing_.emplace_back(release, std::move(text) + "\r\n");
   }
 
+  // Replies leave at the wire speed too: the link is full duplex, each direction at `baud`.
   void flush_output() {
-    std::string ready;
     {
       const std::lock_guard lock(mutex_);
       const auto now = Clock::now();
       while (!outgoing_.empty() && outgoing_.front().first <= now) {
-        ready += outgoing_.front().second;
+        wire_out_ += outgoing_.front().second;
+        if (outgoing_.front().second.starts_with("error:")) {
+          error_ends_.push_back(out_queued_ + static_cast<long>(wire_out_.size()));
+        }
         outgoing_.pop_front();
       }
     }
-    if (!ready.empty()) {
-      (void)channel_->write_all(ready);
+    std::size_t allowed = wire_out_.size();
+    if (options_.baud > 0) {
+      const auto now = Clock::now();
+      out_tokens_ = std::min(64.0, out_tokens_ + std::chrono::duration<double>(now - last_flush_).count() *
+                                                     options_.baud / 10.0);
+      last_flush_ = now;
+      allowed = std::min(allowed, static_cast<std::size_t>(out_tokens_));
+    }
+    if (allowed == 0) {
+      return;
+    }
+    (void)channel_->write_all(std::string_view(wire_out_).substr(0, allowed));
+    out_tokens_ -= static_cast<double>(allowed);
+    wire_out_.erase(0, allowed);
+    if (wire_out_.empty()) {
+      out_tokens_ = 0.0;
+    }
+    out_queued_ += static_cast<long>(allowed);
+    const std::lock_guard lock(mutex_);
+    while (!error_ends_.empty() && error_ends_.front() <= out_queued_) {
+      error_ends_.pop_front();
+      last_error_written_ = Clock::now();
     }
   }
 
@@ -591,6 +625,11 @@ private:
   MotionPlanner planner_;
   std::deque<char> rx_;
   std::deque<std::pair<Clock::time_point, std::string>> outgoing_;
+  std::string wire_out_;          // released replies not yet on the wire
+  std::deque<long> error_ends_;   // output offsets at which an error reply has fully left
+  long out_queued_ = 0;           // bytes written to the wire so far
+  double out_tokens_ = 0.0;
+  Clock::time_point last_flush_ = Clock::now();
   std::map<int, std::string> settings_;
   std::mt19937 rng_;
   std::ofstream log_;
@@ -602,6 +641,7 @@ private:
   Clock::time_point hold_done_at_{};
   std::optional<Clock::time_point> first_program_line_at_;
   std::optional<Clock::time_point> booting_until_;
+  std::optional<Clock::time_point> last_error_written_;
   double tokens_ = 0.0;
   bool was_connected_ = false;
   bool holding_ = false;

@@ -92,7 +92,8 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   sim.stop();
   const auto stats = sim.stats();
   std::cerr << "subfeed-sim: " << stats.executed_count << " lines executed, " << stats.overrun_bytes
-            << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations" << std::endl;
+            << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations, " << stats.alarms_sent
+            << " alarms, " << stats.resets << " resets, state " << stats.state << std::endl;
   return 0;
 }
 

@@ -135,7 +135,7 @@ TEST_CASE("the simulator notices EEPROM writes with bytes waiting", "[pty]") {
   CHECK(bench.sim->stats().eeprom_violations == 1);
 }
 
-TEST_CASE("--send-and-wait keeps one line in flight", "[pty]") {
+TEST_CASE("with --send-and-wait one line is in flight", "[pty]") {
   GrblBench bench(fast_sim());
   auto options = GrblBench::fast_options();
   options.send_and_wait = true;
@@ -179,7 +179,7 @@ TEST_CASE("error:N mid-stream holds, stops and resets the machine, and names the
   CHECK(std::equal(stats.executed.begin(), stats.executed.end(), expected.begin()));
 }
 
-TEST_CASE("--continue-on-error reports each error and finishes", "[pty]") {
+TEST_CASE("with --continue-on-error each error is reported and the job finishes", "[pty]") {
   auto o = fast_sim();
   o.faults.error_on_line = 10;
   GrblBench bench(o);
@@ -323,7 +323,7 @@ TEST_CASE("realtime bytes reach the controller while the line queue is full", "[
   CHECK(bench.sim->stats().overrides == 1);
 }
 
-TEST_CASE("--check runs the file through check mode, then for real", "[pty]") {
+TEST_CASE("with --check the file runs through check mode, then for real", "[pty]") {
   SECTION("clean") {
     GrblBench bench(fast_sim());
     auto options = GrblBench::fast_options();
@@ -412,4 +412,52 @@ TEST_CASE("soak: 100,000 lines with random lengths, reply delays and polls", "[p
   CHECK(stats.eeprom_violations == 0);
   CHECK(stats.executed == stripped_lines(program));
   CHECK(stats.status_queries > 10);
+}
+
+TEST_CASE("the simulator drops and counts bytes a naive sender pushes past its RX buffer", "[pty]") {
+  auto o = fast_sim();
+  o.motion.speed = 1.0; // the planner fills and stops taking lines
+  GrblBench bench(o);
+  std::this_thread::sleep_for(50ms);
+  std::string flood;
+  for (int i = 0; i < 60; ++i) {
+    flood += "G1X" + std::to_string(i % 2 * 50) + "F600\n";
+  }
+  REQUIRE(bench.port->write(flood, 100ms).value() == flood.size());
+  std::this_thread::sleep_for(300ms);
+  CHECK(bench.sim->stats().overrun_bytes > 0);
+}
+
+TEST_CASE("the simulator answers an over-long line with error:11", "[pty]") {
+  GrblBench bench(fast_sim());
+  std::this_thread::sleep_for(50ms);
+  const std::string line = "G1X" + std::string(80, '1') + "\n";
+  REQUIRE(bench.port->write(line, 100ms).value() == line.size());
+  std::string reply;
+  char buffer[256];
+  const auto deadline = std::chrono::steady_clock::now() + 1s;
+  while (reply.find("error:11") == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+    reply.append(buffer, bench.port->read(buffer, 50ms).value_or(0));
+  }
+  CHECK(reply.find("error:11\r\n") != std::string::npos);
+}
+
+TEST_CASE("system commands mid-program wait for idle and their output is never counted", "[pty]") {
+  GrblBench bench(fast_sim());
+  const std::string program = random_program(50, 79, 23) + "$$\n$G\n$#\n" + random_program(50, 79, 24);
+  const auto summary = bench.stream(program);
+  REQUIRE(summary);
+  CHECK(std::ranges::count_if(bench.observer.messages, [](const std::string& m) { return m.starts_with("$"); }) > 20);
+  CHECK(bench.sim->stats().errors_sent == 0); // no error:8 for a $ command while running
+  CHECK(bench.sim->stats().executed.size() == stripped_lines(program).size() - 3);
+}
+
+TEST_CASE("with --keep-comments lines go as written and the controller strips them", "[pty]") {
+  GrblBench bench(fast_sim());
+  auto options = GrblBench::fast_options();
+  options.keep_comments = true;
+  const std::string program = "G21 G90 (metric)\nG1 F1000 ; feed\ng1 x10 y5\n";
+  REQUIRE(bench.stream(program, options));
+  CHECK(bench.sim->stats().executed == std::vector<std::string>{"G21G90", "G1F1000", "G1X10Y5"});
+  CHECK(bench.observer.last.bytes_sent == static_cast<long>(program.size()));
 }

@@ -40,7 +40,7 @@ struct GrblSimOptions {
   int rx_buffer = 128;       // bytes
   int planner_blocks = 16;
   int line_limit = 79;       // characters after spaces and comments are removed
-  int baud = 115200;         // emulated wire speed host->controller; 0 = unlimited
+  int baud = 115200;         // emulated wire speed, both directions; 0 = unlimited
   bool grblhal = false;      // grblHAL banner, [OPT:] and latching errors
   bool report_wpos = false;  // WPos instead of MPos in status reports
   // GRBL on an Arduino resets when its port opens and boots for about 1.5 s, dropping what
@@ -71,6 +71,10 @@ struct GrblSimStats {
   long overrides = 0;                // override bytes received
   std::size_t starvations = 0;       // planner ran dry while lines were still coming
   std::vector<std::string> status_states; // every state reported, in order
+  // For latency measurements: milliseconds from writing an error:N reply to receiving the
+  // sender's feed hold, and when each override byte arrived.
+  std::vector<double> error_to_hold_ms;
+  std::vector<std::chrono::steady_clock::time_point> override_times;
   std::string state;                 // state now
   bool check_mode = false;
 };

@@ -1,0 +1,125 @@
+// `subfeed send` and `subfeed-sim` as a user runs them, over real ptys.
+
+#include "support/run_process.hpp"
+#include "support/temp_dir.hpp"
+
+#include <catch2/catch.hpp>
+#include <csignal>
+#include <thread>
+
+using subfeed::testing::BackgroundProcess;
+using subfeed::testing::run_process;
+using namespace std::chrono_literals;
+
+namespace {
+
+const std::string bin = SUBFEED_BIN;
+const std::string sim_bin = SUBFEED_SIM_BIN;
+const std::string source_dir = SUBFEED_SOURCE_DIR;
+
+std::string moves(int count, int feed) {
+  std::string p = "G21 G90 (setup)\nG1 F" + std::to_string(feed) + "\n";
+  for (int i = 1; i <= count; ++i) {
+    p += "G1 X" + std::to_string(i % 2 * 10) + " Y" + std::to_string(i) + "\n";
+  }
+  return p;
+}
+
+} // namespace
+
+TEST_CASE("send --sim streams a file and summarises", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(200, 3000));
+  const auto r = run_process({bin, "send", job.string(), "--sim", "grbl", "--sim-speed", "1000"});
+  CHECK(r.err.empty());
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.starts_with("done: 202 lines, "));
+  CHECK(r.out.find("link use") != std::string::npos);
+}
+
+TEST_CASE("send --json prints one event per line", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(50, 3000));
+  const auto r = run_process({bin, "send", job.string(), "--sim", "grblhal", "--sim-speed", "1000", "--json"});
+  CHECK(r.exit_code == 0);
+  const auto connected = r.out.find("{\"event\":\"connected\",\"grblhal\":true,");
+  CHECK(connected != std::string::npos);
+  CHECK(connected < r.out.find("{\"event\":\"done\""));
+  CHECK(r.out.find("{\"event\":\"phase\",\"name\":\"stream\"}\n") != std::string::npos);
+  CHECK(r.out.find("{\"event\":\"done\",\"lines\":52,") != std::string::npos);
+}
+
+TEST_CASE("send with a machine config takes its settings; a fanuc machine is refused", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(20, 3000));
+  const auto ok = run_process({bin, "send", job.string(), "--sim", "grbl", "--sim-speed", "1000",
+                               "--machine", source_dir + "/configs/grbl-router-3axis.toml"});
+  CHECK(ok.exit_code == 0);
+  const auto fanuc = run_process({bin, "send", job.string(), "--sim", "grbl", "--machine",
+                                  source_dir + "/configs/fanuc-xyzac-trt.toml"});
+  CHECK(fanuc.exit_code == 2);
+  CHECK(fanuc.err.find("controller.protocol: this machine's controller speaks the fanuc protocol") !=
+        std::string::npos);
+}
+
+TEST_CASE("send refuses bad command lines and bad files with the right exit code", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(5, 3000));
+  CHECK(run_process({bin, "send", job.string()}).exit_code == 1); // no link
+  CHECK(run_process({bin, "send", job.string(), "--sim", "grbl", "--port", "/dev/null"}).exit_code == 1);
+  CHECK(run_process({bin, "send", job.string(), "--sim", "fanuc"}).exit_code == 1);
+  const auto missing = run_process({bin, "send", (dir.path() / "nope.nc").string(), "--sim", "grbl"});
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.err.find("nope.nc: cannot open G-code file") != std::string::npos);
+  const auto bad = dir.write("bad.nc", "G1 X1 F100\nG1 X2 (why?)\n");
+  const auto realtime = run_process({bin, "send", bad.string(), "--sim", "grbl"});
+  CHECK(realtime.exit_code == 2);
+  CHECK(realtime.err == "subfeed: error: " + bad.string() +
+                            ":2: '?' would act as a realtime command on the controller\n");
+  const auto no_port = run_process({bin, "send", job.string(), "--port", "/dev/nonexistent-tty"});
+  CHECK(no_port.exit_code == 3);
+  CHECK(no_port.err.find("/dev/nonexistent-tty: cannot open serial port") != std::string::npos);
+}
+
+TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exits 3", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(100, 3000));
+  BackgroundProcess sim({sim_bin, "grbl", "--speed", "1000", "--error-on-line", "40"});
+  const std::string port = sim.first_line();
+  REQUIRE(port.starts_with("/dev/pts/"));
+  const auto r = run_process({bin, "send", job.string(), "--port", port});
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in block)") !=
+        std::string::npos);
+  sim.signal(SIGTERM);
+  const auto served = sim.wait();
+  CHECK(served.exit_code == 0);
+  CHECK(served.err.find(" 0 bytes overrun, 0 EEPROM violations, 0 alarms, 1 resets") != std::string::npos);
+}
+
+TEST_CASE("Ctrl-C stops the machine safely and exits 4", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(100, 600)); // slow: 10 mm at 600 mm/min each
+  BackgroundProcess sim({sim_bin, "grbl"});
+  const std::string port = sim.first_line();
+  BackgroundProcess sender({bin, "send", job.string(), "--port", port});
+  std::this_thread::sleep_for(800ms);
+  sender.signal(SIGINT);
+  const auto sent = sender.wait();
+  CHECK(sent.exit_code == 4);
+  CHECK(sent.err.find("stopped by the user; last line acknowledged: ") != std::string::npos);
+  sim.signal(SIGTERM);
+  const auto served = sim.wait();
+  CHECK(served.err.find("0 alarms, 1 resets, state Idle") != std::string::npos);
+}
+
+TEST_CASE("subfeed-sim serves TCP for send --tcp", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(50, 3000));
+  BackgroundProcess sim({sim_bin, "grbl", "--grblhal", "--speed", "1000", "--tcp", "127.0.0.1:0"});
+  const std::string address = sim.first_line();
+  REQUIRE(address.starts_with("127.0.0.1:"));
+  const auto r = run_process({bin, "send", job.string(), "--tcp", address});
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.starts_with("done: 52 lines"));
+}
