@@ -16,20 +16,18 @@ Expected<std::unique_ptr<ControlInbox>> ControlInbox::create() {
   return std::unique_ptr<ControlInbox>(new ControlInbox(fd));
 }
 
-ControlInbox::~ControlInbox() { ::close(event_fd_); }
-
 void ControlInbox::push(ControlCommand command) {
   {
     const std::lock_guard lock(mutex_);
     commands_.push_back(command);
   }
   const std::uint64_t one = 1;
-  (void)!::write(event_fd_, &one, sizeof one);
+  (void)!::write(event_fd_.get(), &one, sizeof one);
 }
 
 std::vector<ControlCommand> ControlInbox::take() {
   std::uint64_t count = 0;
-  (void)!::read(event_fd_, &count, sizeof count);
+  (void)!::read(event_fd_.get(), &count, sizeof count);
   const std::lock_guard lock(mutex_);
   std::vector<ControlCommand> taken(commands_.begin(), commands_.end());
   commands_.clear();

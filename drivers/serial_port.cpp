@@ -101,30 +101,6 @@ Expected<SerialPort> SerialPort::open(const std::string& path, const SerialOptio
   return port;
 }
 
-SerialPort::SerialPort(SerialPort&& other) noexcept
-    : fd_(std::exchange(other.fd_, -1)), path_(std::move(other.path_)) {}
-
-SerialPort& SerialPort::operator=(SerialPort&& other) noexcept {
-  if (this != &other) {
-    close();
-    fd_ = std::exchange(other.fd_, -1);
-    path_ = std::move(other.path_);
-  }
-  return *this;
-}
-
-SerialPort::~SerialPort() {
-  close();
-}
-
-void SerialPort::close() noexcept {
-  if (fd_ >= 0) {
-    ::ioctl(fd_, TIOCNXCL);
-    ::close(fd_);
-    fd_ = -1;
-  }
-}
-
 std::unexpected<Error> SerialPort::failure(const std::string& what) const {
   return fail(ErrorCode::machine_fault, what + ": " + os_error(), {path_, 0, {}});
 }
@@ -132,7 +108,7 @@ std::unexpected<Error> SerialPort::failure(const std::string& what) const {
 // True when `events` are ready; false on timeout. A hang-up or error condition is reported
 // as the port having vanished.
 Expected<bool> SerialPort::wait(short events, std::chrono::milliseconds timeout) const {
-  pollfd p{fd_, events, 0};
+  pollfd p{fd_.get(), events, 0};
   const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
   if (ready < 0) {
     return errno == EINTR ? Expected<bool>(false) : failure("poll failed");
@@ -151,7 +127,7 @@ Expected<std::size_t> SerialPort::read(std::span<char> buffer, std::chrono::mill
   if (!ready) {
     return 0;
   }
-  const ssize_t n = ::read(fd_, buffer.data(), buffer.size());
+  const ssize_t n = ::read(fd_.get(), buffer.data(), buffer.size());
   if (n > 0) {
     return static_cast<std::size_t>(n);
   }
@@ -170,7 +146,7 @@ Expected<std::size_t> SerialPort::write(std::span<const char> bytes,
   if (!ready) {
     return 0;
   }
-  const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+  const ssize_t n = ::write(fd_.get(), bytes.data(), bytes.size());
   if (n < 0) {
     if (errno == EAGAIN || errno == EINTR) {
       return 0;
@@ -181,7 +157,7 @@ Expected<std::size_t> SerialPort::write(std::span<const char> bytes,
 }
 
 Expected<void> SerialPort::drain() {
-  if (::tcdrain(fd_) != 0) {
+  if (::tcdrain(fd_.get()) != 0) {
     return failure("drain failed");
   }
   return {};

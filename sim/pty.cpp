@@ -49,35 +49,12 @@ Expected<Pty> Pty::open() {
   return pty;
 }
 
-Pty::Pty(Pty&& other) noexcept
-    : master_(std::exchange(other.master_, -1)), slave_path_(std::move(other.slave_path_)) {}
-
-Pty& Pty::operator=(Pty&& other) noexcept {
-  if (this != &other) {
-    close();
-    master_ = std::exchange(other.master_, -1);
-    slave_path_ = std::move(other.slave_path_);
-  }
-  return *this;
-}
-
-Pty::~Pty() {
-  close();
-}
-
-void Pty::close() noexcept {
-  if (master_ >= 0) {
-    ::close(master_);
-    master_ = -1;
-  }
-}
-
 Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
-  if (master_ < 0) {
+  if (!master_.valid()) {
     std::this_thread::sleep_for(timeout);
     return 0;
   }
-  pollfd p{master_, POLLIN, 0};
+  pollfd p{master_.get(), POLLIN, 0};
   const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
   if (ready < 0) {
     return errno == EINTR ? Expected<std::size_t>(0) : os_failure("poll", slave_path_);
@@ -93,7 +70,7 @@ Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::millisecond
     return 0;
   }
   connected_ = true;
-  const ssize_t n = ::read(master_, buffer.data(), buffer.size());
+  const ssize_t n = ::read(master_.get(), buffer.data(), buffer.size());
   if (n < 0) {
     if (errno == EIO || errno == EAGAIN || errno == EINTR) { // EIO: the slave just closed
       connected_ = errno != EIO;
@@ -106,12 +83,12 @@ Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::millisecond
 
 Expected<void> Pty::write_all(std::span<const char> bytes) {
   while (!bytes.empty()) {
-    const ssize_t n = master_ >= 0 ? ::write(master_, bytes.data(), bytes.size()) : -1;
+    const ssize_t n = master_.valid() ? ::write(master_.get(), bytes.data(), bytes.size()) : -1;
     if (n < 0) {
       if (errno == EINTR) {
         continue;
       }
-      if (master_ < 0 || errno == EIO) { // nobody listening: the bytes fall off the wire
+      if (!master_.valid() || errno == EIO) { // nobody listening: the bytes fall off the wire
         return {};
       }
       return os_failure("write", slave_path_);

@@ -45,71 +45,40 @@ Expected<TcpListener> TcpListener::open(const std::string& host, int port) {
   return listener;
 }
 
-TcpListener::TcpListener(TcpListener&& other) noexcept
-    : listen_(std::exchange(other.listen_, -1)), peer_(std::exchange(other.peer_, -1)),
-      address_(std::move(other.address_)) {}
-
-TcpListener& TcpListener::operator=(TcpListener&& other) noexcept {
-  if (this != &other) {
-    close();
-    listen_ = std::exchange(other.listen_, -1);
-    peer_ = std::exchange(other.peer_, -1);
-    address_ = std::move(other.address_);
-  }
-  return *this;
-}
-
-TcpListener::~TcpListener() { close(); }
-
-void TcpListener::drop_peer() noexcept {
-  if (peer_ >= 0) {
-    ::close(peer_);
-    peer_ = -1;
-  }
-}
-
-void TcpListener::close() noexcept {
-  drop_peer();
-  if (listen_ >= 0) {
-    ::close(listen_);
-    listen_ = -1;
-  }
-}
-
 Expected<std::size_t> TcpListener::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
-  if (listen_ < 0) {
+  if (!listen_.valid()) {
     std::this_thread::sleep_for(timeout);
     return 0;
   }
-  pollfd p{peer_ >= 0 ? peer_ : listen_, POLLIN, 0};
+  pollfd p{peer_.valid() ? peer_.get() : listen_.get(), POLLIN, 0};
   const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
   if (ready <= 0) {
     return ready < 0 && errno != EINTR ? os_failure("poll", address_) : Expected<std::size_t>(0);
   }
-  if (peer_ < 0) {
-    peer_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
-    if (peer_ >= 0) {
+  if (!peer_.valid()) {
+    peer_.reset(::accept4(listen_.get(), nullptr, nullptr, SOCK_CLOEXEC));
+    if (peer_.valid()) {
       const int yes = 1; // replies are tiny and latency matters
-      ::setsockopt(peer_, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+      ::setsockopt(peer_.get(), IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
     }
     return 0;
   }
-  const ssize_t n = ::recv(peer_, buffer.data(), buffer.size(), 0);
+  const ssize_t n = ::recv(peer_.get(), buffer.data(), buffer.size(), 0);
   if (n <= 0) {
-    drop_peer(); // the sender went away; wait for the next one
+    peer_.reset(); // the sender went away; wait for the next one
     return 0;
   }
   return static_cast<std::size_t>(n);
 }
 
 Expected<void> TcpListener::write_all(std::span<const char> bytes) {
-  while (peer_ >= 0 && !bytes.empty()) {
-    const ssize_t n = ::send(peer_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+  while (peer_.valid() && !bytes.empty()) {
+    const ssize_t n = ::send(peer_.get(), bytes.data(), bytes.size(), MSG_NOSIGNAL);
     if (n < 0) {
       if (errno == EINTR) {
         continue;
       }
-      drop_peer();
+      peer_.reset();
       return {};
     }
     bytes = bytes.subspan(static_cast<std::size_t>(n));

@@ -52,8 +52,8 @@ void block_stop_signals() {
 
 ControlThread::ControlThread(drivers::ControlInbox& inbox, bool keyboard) {
   const sigset_t set = stop_signals();
-  signal_fd_ = ::signalfd(-1, &set, SFD_CLOEXEC);
-  quit_fd_ = ::eventfd(0, EFD_CLOEXEC);
+  signal_fd_.reset(::signalfd(-1, &set, SFD_CLOEXEC));
+  quit_fd_.reset(::eventfd(0, EFD_CLOEXEC));
   if (keyboard && ::isatty(STDIN_FILENO) != 0) {
     termios tio{};
     if (::tcgetattr(STDIN_FILENO, &tio) == 0) {
@@ -69,18 +69,16 @@ ControlThread::ControlThread(drivers::ControlInbox& inbox, bool keyboard) {
 
 ControlThread::~ControlThread() {
   const std::uint64_t one = 1;
-  (void)!::write(quit_fd_, &one, sizeof one);
+  (void)!::write(quit_fd_.get(), &one, sizeof one);
   thread_.join();
   if (saved_terminal_) {
     ::tcsetattr(STDIN_FILENO, TCSANOW, &*saved_terminal_);
   }
-  ::close(signal_fd_);
-  ::close(quit_fd_);
 }
 
 void ControlThread::run(drivers::ControlInbox& inbox, bool keyboard) {
   while (true) {
-    pollfd fds[3] = {{quit_fd_, POLLIN, 0}, {signal_fd_, POLLIN, 0},
+    pollfd fds[3] = {{quit_fd_.get(), POLLIN, 0}, {signal_fd_.get(), POLLIN, 0},
                      {keyboard ? STDIN_FILENO : -1, POLLIN, 0}};
     if (::poll(fds, 3, -1) < 0) {
       continue;
@@ -90,7 +88,7 @@ void ControlThread::run(drivers::ControlInbox& inbox, bool keyboard) {
     }
     if (fds[1].revents != 0) {
       signalfd_siginfo info{};
-      if (::read(signal_fd_, &info, sizeof info) == sizeof info) {
+      if (::read(signal_fd_.get(), &info, sizeof info) == sizeof info) {
         inbox.push({drivers::ControlCommand::Kind::stop, 0});
       }
     }

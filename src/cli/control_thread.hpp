@@ -7,6 +7,7 @@
 // The terminal is put in single-key mode and restored when the thread ends. Signals must be
 // blocked (block_stop_signals) before any thread is started.
 
+#include "base/unique_fd.hpp"
 #include "drivers/control_inbox.hpp"
 
 #include <optional>
@@ -28,8 +29,8 @@ public:
 private:
   void run(drivers::ControlInbox& inbox, bool keyboard);
 
-  int signal_fd_ = -1;
-  int quit_fd_ = -1;
+  UniqueFd signal_fd_;
+  UniqueFd quit_fd_;
   std::optional<termios> saved_terminal_;
   std::thread thread_;
 };

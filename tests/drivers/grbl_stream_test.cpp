@@ -382,6 +382,7 @@ TEST_CASE("streaming over TCP to a grblHAL", "[pty]") {
   auto o = fast_sim();
   o.grblhal = true;
   o.line_limit = 256;
+  o.record_executed = true;
   auto listener = subfeed::sim::TcpListener::open("127.0.0.1", 0).value();
   subfeed::sim::GrblSim sim(std::make_unique<subfeed::sim::TcpListener>(std::move(listener)), o);
   sim.start();

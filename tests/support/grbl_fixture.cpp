@@ -11,6 +11,7 @@ namespace subfeed::testing {
 GrblBench::GrblBench(sim::GrblSimOptions options) {
   auto pty = sim::Pty::open().value();
   options.boot_time = std::chrono::milliseconds(5);
+  options.record_executed = true;
   sim = std::make_unique<sim::GrblSim>(std::make_unique<sim::Pty>(std::move(pty)), options);
   sim->start();
   port = std::make_unique<drivers::SerialPort>(

@@ -1,8 +1,8 @@
 #include "support/run_process.hpp"
 
-#include "support/temp_dir.hpp"
 
 #include <fcntl.h>
+#include <filesystem>
 #include <fstream>
 #include <spawn.h>
 #include <sstream>
@@ -23,34 +23,8 @@ std::string slurp(const std::filesystem::path& file) {
 } // namespace
 
 ProcessResult run_process(const std::vector<std::string>& argv) {
-  const TempDir dir;
-  const auto out_file = dir.path() / "stdout";
-  const auto err_file = dir.path() / "stderr";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0600);
-  posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0600);
-  std::vector<char*> args;
-  for (const auto& a : argv) {
-    args.push_back(const_cast<char*>(a.c_str()));
-  }
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    throw std::runtime_error("cannot start " + argv.at(0));
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  ProcessResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = slurp(out_file);
-  result.err = slurp(err_file);
-  return result;
+  BackgroundProcess process(argv);
+  return process.wait();
 }
 
 } // namespace subfeed::testing
@@ -123,14 +97,15 @@ ProcessResult BackgroundProcess::wait() {
   if (waited_) {
     return result_;
   }
-  int status = 0;
-  ::waitpid(pid_, &status, 0);
+  // Drain stdout before reaping: a child that fills the pipe would otherwise never exit.
   char buffer[4096];
   ssize_t n = 0;
   while ((n = ::read(out_fd_, buffer, sizeof buffer)) > 0) {
     out_.append(buffer, static_cast<std::size_t>(n));
   }
   ::close(out_fd_);
+  int status = 0;
+  ::waitpid(pid_, &status, 0);
   waited_ = true;
   result_.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   result_.out = out_;

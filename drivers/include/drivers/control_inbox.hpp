@@ -5,6 +5,7 @@
 // they never enter the counted line queue.
 
 #include "base/error.hpp"
+#include "base/unique_fd.hpp"
 
 #include <deque>
 #include <memory>
@@ -25,18 +26,14 @@ struct ControlCommand {
 class ControlInbox {
 public:
   [[nodiscard]] static Expected<std::unique_ptr<ControlInbox>> create();
-  ControlInbox(const ControlInbox&) = delete;
-  ControlInbox& operator=(const ControlInbox&) = delete;
-  ~ControlInbox();
-
   void push(ControlCommand command);
   [[nodiscard]] std::vector<ControlCommand> take();
-  [[nodiscard]] int fd() const { return event_fd_; }
+  [[nodiscard]] int fd() const { return event_fd_.get(); }
 
 private:
   explicit ControlInbox(int event_fd) : event_fd_(event_fd) {}
 
-  int event_fd_ = -1;
+  UniqueFd event_fd_;
   std::mutex mutex_;
   std::deque<ControlCommand> commands_;
 };

@@ -10,6 +10,7 @@
 // simulated controller must be reached through exactly the code path of a real port.
 
 #include "base/error.hpp"
+#include "base/unique_fd.hpp"
 #include "drivers/transport.hpp"
 
 #include <chrono>
@@ -35,11 +36,6 @@ public:
   [[nodiscard]] static Expected<SerialPort> open(const std::string& path,
                                                  const SerialOptions& options);
 
-  SerialPort(SerialPort&& other) noexcept;
-  SerialPort& operator=(SerialPort&& other) noexcept;
-  SerialPort(const SerialPort&) = delete;
-  SerialPort& operator=(const SerialPort&) = delete;
-  ~SerialPort() override;
 
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout);
@@ -48,16 +44,15 @@ public:
   // Waits until the OS has handed every written byte to the hardware (returns at once on a
   // pty, which has no wire).
   [[nodiscard]] Expected<void> drain();
-  [[nodiscard]] int poll_fd() const override { return fd_; }
+  [[nodiscard]] int poll_fd() const override { return fd_.get(); }
   [[nodiscard]] const std::string& name() const override { return path_; }
 
 private:
   SerialPort(int fd, std::string path) : fd_(fd), path_(std::move(path)) {}
-  void close() noexcept;
   [[nodiscard]] std::unexpected<Error> failure(const std::string& what) const;
   [[nodiscard]] Expected<bool> wait(short events, std::chrono::milliseconds timeout) const;
 
-  int fd_ = -1;
+  UniqueFd fd_; // closing it also ends the exclusive access and the lock
   std::string path_;
 };
 

@@ -50,7 +50,9 @@ struct GrblSimOptions {
   bool alarm_on_boot = false;       // boots locked, as GRBL with homing enabled does
   MotionModel motion;
   GrblFaults faults;
-  bool record_executed = true; // keep every executed line in stats (off for huge programs)
+  // Keep every executed line in stats (tests); off, memory stays flat however long the job:
+  // executed_count and executed_hash still prove delivery.
+  bool record_executed = false;
   std::string executed_log;    // also append each executed line to this file, if set
 };
 

@@ -6,6 +6,7 @@
 // side see a hang-up, which is how a vanished port looks to a sender.
 
 #include "base/error.hpp"
+#include "base/unique_fd.hpp"
 #include "sim/byte_channel.hpp"
 
 #include <chrono>
@@ -19,13 +20,8 @@ class Pty final : public ByteChannel {
 public:
   [[nodiscard]] static Expected<Pty> open();
 
-  Pty(Pty&& other) noexcept;
-  Pty& operator=(Pty&& other) noexcept;
-  Pty(const Pty&) = delete;
-  Pty& operator=(const Pty&) = delete;
-  ~Pty() override;
 
-  [[nodiscard]] int master_fd() const { return master_; }
+  [[nodiscard]] int master_fd() const { return master_.get(); }
   [[nodiscard]] const std::string& slave_path() const { return slave_path_; }
 
   // Bytes that arrived within `timeout`; zero on timeout and while no one has the slave
@@ -35,14 +31,14 @@ public:
   [[nodiscard]] Expected<void> write_all(std::span<const char> bytes) override;
 
   // Hangs up: the slave side sees the port vanish.
-  void close() noexcept override;
+  void close() noexcept override { master_.reset(); }
   [[nodiscard]] std::string address() const override { return slave_path_; }
   [[nodiscard]] bool connected() const override { return connected_; }
 
 private:
   Pty(int master, std::string slave_path) : master_(master), slave_path_(std::move(slave_path)) {}
 
-  int master_ = -1;
+  UniqueFd master_;
   std::string slave_path_;
   bool connected_ = false;
 };

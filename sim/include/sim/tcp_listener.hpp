@@ -3,6 +3,7 @@
 // offers one: listens on a loopback or given address, serves one connection at a time and
 // accepts the next when the sender goes away.
 
+#include "base/unique_fd.hpp"
 #include "sim/byte_channel.hpp"
 
 namespace subfeed::sim {
@@ -12,25 +13,22 @@ public:
   // `port` 0 picks a free port; address() then tells which.
   [[nodiscard]] static Expected<TcpListener> open(const std::string& host, int port);
 
-  TcpListener(TcpListener&& other) noexcept;
-  TcpListener& operator=(TcpListener&& other) noexcept;
-  TcpListener(const TcpListener&) = delete;
-  TcpListener& operator=(const TcpListener&) = delete;
-  ~TcpListener() override;
 
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout) override;
   [[nodiscard]] Expected<void> write_all(std::span<const char> bytes) override;
-  void close() noexcept override;
+  void close() noexcept override {
+    peer_.reset();
+    listen_.reset();
+  }
   [[nodiscard]] std::string address() const override { return address_; }
-  [[nodiscard]] bool connected() const override { return peer_ >= 0; }
+  [[nodiscard]] bool connected() const override { return peer_.valid(); }
 
 private:
   TcpListener(int listen_fd, std::string address) : listen_(listen_fd), address_(std::move(address)) {}
-  void drop_peer() noexcept;
 
-  int listen_ = -1;
-  int peer_ = -1;
+  UniqueFd listen_;
+  UniqueFd peer_;
   std::string address_;
 };
 
