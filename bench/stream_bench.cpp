@@ -130,8 +130,9 @@ void cpu_per_line() {
   const double before = thread_cpu_seconds();
   const auto scan = source.scan().value();
   const double scan_cpu = thread_cpu_seconds() - before;
-  bench::report({"host CPU per streamed line", 1e6 * run.thread_cpu_s / static_cast<double>(run.summary.lines),
-                 "us", "read+prepare line only", 1e6 * scan_cpu / static_cast<double>(scan.lines_to_send),
+  bench::report({"host CPU per streamed line",
+                 1e6 * run.thread_cpu_s / static_cast<double>(run.summary.lines), "us",
+                 "read+prepare line only", 1e6 * scan_cpu / static_cast<double>(scan.lines_to_send),
                  false});
 }
 
@@ -142,7 +143,8 @@ void reaction(const std::vector<double>& one_way) {
     auto o = machine(0, 1e6);
     o.faults.error_on_line = 30;
     const auto run = stream(o, {}, program).value();
-    reactions.insert(reactions.end(), run.stats.error_to_hold_ms.begin(), run.stats.error_to_hold_ms.end());
+    reactions.insert(reactions.end(), run.stats.error_to_hold_ms.begin(),
+                     run.stats.error_to_hold_ms.end());
   }
   bench::report({"error:N -> '!' on the wire, p99", percentile(reactions, 0.99), "ms",
                  "pty one-way byte, p99", percentile(one_way, 0.99), false});
@@ -159,7 +161,8 @@ void realtime_latency(const std::vector<double>& one_way) {
     for (int i = 0; i < 100 && !stop.stop_requested(); ++i) {
       pushed.push_back(Clock::now());
       inbox->push({drivers::ControlCommand::Kind::realtime,
-                   i % 2 == 0 ? drivers::grbl_realtime::feed_plus_1 : drivers::grbl_realtime::feed_minus_1});
+                   i % 2 == 0 ? drivers::grbl_realtime::feed_plus_1
+                              : drivers::grbl_realtime::feed_minus_1});
       std::this_thread::sleep_for(10ms);
     }
     inbox->push({drivers::ControlCommand::Kind::stop, 0});
@@ -169,11 +172,13 @@ void realtime_latency(const std::vector<double>& one_way) {
   std::vector<double> latency;
   if (run) {
     for (std::size_t i = 0; i < std::min(pushed.size(), run->stats.override_times.size()); ++i) {
-      latency.push_back(std::chrono::duration<double, std::milli>(run->stats.override_times[i] - pushed[i]).count());
+      latency.push_back(
+          std::chrono::duration<double, std::milli>(run->stats.override_times[i] - pushed[i])
+              .count());
     }
   }
-  bench::report({"realtime byte, full queue, p99", percentile(latency, 0.99), "ms", "pty one-way byte, p99",
-                 percentile(one_way, 0.99), false});
+  bench::report({"realtime byte, full queue, p99", percentile(latency, 0.99), "ms",
+                 "pty one-way byte, p99", percentile(one_way, 0.99), false});
 }
 
 double peak_rss_mib() {

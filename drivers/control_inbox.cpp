@@ -1,7 +1,7 @@
 #include "drivers/control_inbox.hpp"
 
-#include <cstdint>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <sys/eventfd.h>
 #include <unistd.h>

@@ -7,7 +7,9 @@ namespace subfeed::drivers {
 
 namespace {
 
-bool realtime_character(unsigned char c) { return c == '?' || c == '!' || c == '~' || c >= 0x80; }
+bool realtime_character(unsigned char c) {
+  return c == '?' || c == '!' || c == '~' || c >= 0x80;
+}
 
 std::string describe_byte(unsigned char c) {
   char text[16];
@@ -73,7 +75,8 @@ Expected<PreparedLine> prepare_line(std::string_view raw, const LineRules& rules
                   describe_byte(c) + " would act as a realtime command on the controller", where);
     }
     if (c < 0x20 && c != '\t') {
-      return fail(ErrorCode::bad_input, "control character " + describe_byte(c) + " in line", where);
+      return fail(ErrorCode::bad_input, "control character " + describe_byte(c) + " in line",
+                  where);
     }
   }
   const std::string stripped = strip(raw);

@@ -28,7 +28,8 @@ Expected<std::optional<SourceLine>> GcodeSource::next() {
     if (!raw.empty() && raw.back() == '\r') {
       raw.pop_back();
     }
-    SUBFEED_TRY_ASSIGN(auto prepared, prepare_line(raw, rules_, {name_, static_cast<int>(line_), {}}));
+    SUBFEED_TRY_ASSIGN(auto prepared,
+                       prepare_line(raw, rules_, {name_, static_cast<int>(line_), {}}));
     if (!prepared.text.empty()) {
       return SourceLine{line_, std::move(prepared)};
     }

@@ -202,8 +202,9 @@ std::string_view error_meaning(int code) {
       "unused value words were found in block",
       "G43.1 dynamic tool length offset is not assigned to configured tool length axis",
       "tool number greater than max supported value"};
-  return code >= 0 && code < static_cast<int>(meanings.size()) ? meanings[static_cast<std::size_t>(code)]
-                                                               : "unknown error";
+  return code >= 0 && code < static_cast<int>(meanings.size())
+             ? meanings[static_cast<std::size_t>(code)]
+             : "unknown error";
 }
 
 std::string_view alarm_meaning(int code) {
@@ -218,8 +219,9 @@ std::string_view alarm_meaning(int code) {
       "homing fail: safety door was opened during homing",
       "homing fail: cycle failed to clear the limit switch when pulling off",
       "homing fail: could not find the limit switch within the search distance"};
-  return code >= 0 && code < static_cast<int>(meanings.size()) ? meanings[static_cast<std::size_t>(code)]
-                                                               : "unknown alarm";
+  return code >= 0 && code < static_cast<int>(meanings.size())
+             ? meanings[static_cast<std::size_t>(code)]
+             : "unknown alarm";
 }
 
 } // namespace subfeed::drivers

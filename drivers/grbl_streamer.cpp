@@ -20,9 +20,9 @@ constexpr auto lost_ack_after = 1000ms;
 constexpr auto reset_banner_wait = 3000ms;
 
 struct InFlight {
-  long file_line = 0;     // 0 for the sender's own commands ($I, $C, latch clearing)
-  int bytes = 0;          // counted in the RX buffer, '\n' included
-  bool alone = false;     // nothing may follow it until it is answered
+  long file_line = 0; // 0 for the sender's own commands ($I, $C, latch clearing)
+  int bytes = 0;      // counted in the RX buffer, '\n' included
+  bool alone = false; // nothing may follow it until it is answered
   bool clears_latch = false;
   Clock::time_point sent_at{};
 };
@@ -171,8 +171,8 @@ private:
       // Stop motion first: the lines behind this one are already in the controller.
       (void)realtime(rt::feed_hold);
       fail_with(ErrorCode::machine_fault,
-                "controller error:" + std::to_string(code) + " (" + std::string(error_meaning(code)) +
-                    ")" + in_flight_note(),
+                "controller error:" + std::to_string(code) + " (" +
+                    std::string(error_meaning(code)) + ")" + in_flight_note(),
                 file_line);
       return;
     }
@@ -204,7 +204,8 @@ private:
       banner_seen_ = true;
       return;
     }
-    fail_with(ErrorCode::machine_fault, "the controller reset itself (welcome message mid-job)" + acked_note(),
+    fail_with(ErrorCode::machine_fault,
+              "the controller reset itself (welcome message mid-job)" + acked_note(),
               last_acked_line_);
     motion_stopped_ = true;
   }
@@ -295,7 +296,8 @@ private:
       SUBFEED_TRY(realtime(rt::status));
       const auto next = Clock::now() + 50ms;
       while (Clock::now() < next) {
-        SUBFEED_TRY(pump(std::chrono::duration_cast<std::chrono::milliseconds>(next - Clock::now())));
+        SUBFEED_TRY(
+            pump(std::chrono::duration_cast<std::chrono::milliseconds>(next - Clock::now())));
       }
       if (status_ && (status_->state == "Idle" || status_->state == "Alarm" ||
                       (status_->state == "Hold" && status_->substate == 0))) {
@@ -369,12 +371,11 @@ private:
                status_at_ > std::max(last_ack_at_, in_flight_.front().sent_at) + lost_ack_after) {
       // Answers carry no line number: after a lost one every later answer retired the line
       // before its own, so which line lost its answer cannot be told.
-      fail_with(ErrorCode::machine_fault,
-                "acknowledgement lost: the controller is idle but " +
-                    std::to_string(in_flight_.size()) +
-                    " line(s) are unanswered; the last line sent was " +
-                    std::to_string(last_sent_line_),
-                last_sent_line_);
+      fail_with(
+          ErrorCode::machine_fault,
+          "acknowledgement lost: the controller is idle but " + std::to_string(in_flight_.size()) +
+              " line(s) are unanswered; the last line sent was " + std::to_string(last_sent_line_),
+          last_sent_line_);
     }
     return {};
   }
@@ -392,7 +393,8 @@ private:
   }
 
   [[nodiscard]] std::chrono::milliseconds until_next_poll() const {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(next_poll_at_ - Clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(next_poll_at_ - Clock::now());
     return std::clamp(left, 0ms, 50ms);
   }
 
@@ -413,6 +415,10 @@ private:
     const auto deadline = Clock::now() + options_.connect_timeout;
     auto probe_at = Clock::now() + 300ms; // an Arduino GRBL speaks first, after its boot
     while (!banner_seen_ && !status_ && Clock::now() < deadline) {
+      SUBFEED_TRY(handle_inbox());
+      if (fault_) {
+        return std::unexpected(*fault_); // stopped before anything was sent: nothing to hold
+      }
       if (Clock::now() >= probe_at) {
         SUBFEED_TRY(realtime(rt::status));
         probe_at = Clock::now() + 500ms;
@@ -435,7 +441,8 @@ private:
     } else if (!info_.rx_buffer_reported) {
       info_.rx_buffer = fallback_rx_buffer;
     }
-    info_.line_limit = options_.line_limit.value_or(info_.grblhal ? grblhal_line_limit : grbl_line_limit);
+    info_.line_limit =
+        options_.line_limit.value_or(info_.grblhal ? grblhal_line_limit : grbl_line_limit);
     return {};
   }
 
@@ -500,9 +507,9 @@ private:
     SUBFEED_TRY(wait_for_banner(reset_banner_wait));
     if (errors_ > 0) {
       return fail(ErrorCode::bad_input,
-                  "check mode found " + std::to_string(errors_) + " line(s) in error, the first error:" +
-                      std::to_string(first_error_code_) + " (" +
-                      std::string(error_meaning(first_error_code_)) + "); nothing was run",
+                  "check mode found " + std::to_string(errors_) +
+                      " line(s) in error, the first error:" + std::to_string(first_error_code_) +
+                      " (" + std::string(error_meaning(first_error_code_)) + "); nothing was run",
                   {source_.name(), static_cast<int>(first_error_line_), {}});
     }
     SUBFEED_TRY(require_idle());

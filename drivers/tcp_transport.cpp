@@ -29,7 +29,8 @@ Expected<TcpTransport> TcpTransport::connect(const std::string& endpoint,
   auto s = std::make_unique<Socket>();
   asio::ip::tcp::resolver resolver(s->io);
   boost::system::error_code ec;
-  const auto addresses = resolver.resolve(endpoint.substr(0, colon), endpoint.substr(colon + 1), ec);
+  const auto addresses =
+      resolver.resolve(endpoint.substr(0, colon), endpoint.substr(colon + 1), ec);
   if (ec) {
     return fail(ErrorCode::machine_fault, "cannot resolve: " + ec.message(), {endpoint, 0, {}});
   }
@@ -49,7 +50,9 @@ Expected<TcpTransport> TcpTransport::connect(const std::string& endpoint,
   return TcpTransport(std::move(s), endpoint);
 }
 
-int TcpTransport::poll_fd() const { return socket_->socket.native_handle(); }
+int TcpTransport::poll_fd() const {
+  return socket_->socket.native_handle();
+}
 
 Expected<bool> TcpTransport::wait(short events, std::chrono::milliseconds timeout) const {
   pollfd p{poll_fd(), events, 0};
@@ -61,7 +64,8 @@ Expected<bool> TcpTransport::wait(short events, std::chrono::milliseconds timeou
   return ready > 0;
 }
 
-Expected<std::size_t> TcpTransport::read(std::span<char> buffer, std::chrono::milliseconds timeout) {
+Expected<std::size_t> TcpTransport::read(std::span<char> buffer,
+                                         std::chrono::milliseconds timeout) {
   SUBFEED_TRY_ASSIGN(const bool ready, wait(POLLIN, timeout));
   if (!ready) {
     return 0;

@@ -51,7 +51,9 @@ std::size_t read_number(std::string_view text, double& value) {
   return digits ? i : 0;
 }
 
-bool is_integer(double v) { return std::abs(v - std::round(v)) < 1e-9; }
+bool is_integer(double v) {
+  return std::abs(v - std::round(v)) < 1e-9;
+}
 
 int axis_index(char letter) {
   switch (letter) {
@@ -73,9 +75,9 @@ int axis_index(char letter) {
 }
 
 bool supported_g(double g) {
-  static constexpr double codes[] = {0,  1,  2,  3,  4,  10, 17, 18, 19, 20, 21, 28, 28.1, 30,
-                                     30.1, 40, 43.1, 49, 53, 54, 55, 56, 57, 58, 59, 61, 80, 90,
-                                     91, 92, 93, 94};
+  static constexpr double codes[] = {0,  1,    2,  3,    4,  10,   17, 18, 19, 20, 21,
+                                     28, 28.1, 30, 30.1, 40, 43.1, 49, 53, 54, 55, 56,
+                                     57, 58,   59, 61,   80, 90,   91, 92, 93, 94};
   for (const double c : codes) {
     if (std::abs(g - c) < 1e-9) {
       return true;

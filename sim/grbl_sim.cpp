@@ -55,13 +55,13 @@ std::uint64_t fnv1a(std::uint64_t hash, std::string_view text) {
 } // namespace
 
 std::vector<std::pair<int, std::string>> default_grbl_settings() {
-  return {{0, "10"},      {1, "25"},      {2, "0"},      {3, "0"},      {4, "0"},
-          {5, "0"},       {6, "0"},       {10, "1"},     {11, "0.010"}, {12, "0.002"},
-          {13, "0"},      {20, "0"},      {21, "0"},     {22, "0"},     {23, "0"},
-          {24, "25.000"}, {25, "500.000"}, {26, "250"},  {27, "1.000"}, {30, "1000"},
-          {31, "0"},      {32, "0"},      {100, "250.000"}, {101, "250.000"}, {102, "250.000"},
-          {110, "500.000"}, {111, "500.000"}, {112, "500.000"}, {120, "10.000"},
-          {121, "10.000"}, {122, "10.000"}, {130, "200.000"}, {131, "200.000"}, {132, "200.000"}};
+  return {{0, "10"},        {1, "25"},        {2, "0"},         {3, "0"},         {4, "0"},
+          {5, "0"},         {6, "0"},         {10, "1"},        {11, "0.010"},    {12, "0.002"},
+          {13, "0"},        {20, "0"},        {21, "0"},        {22, "0"},        {23, "0"},
+          {24, "25.000"},   {25, "500.000"},  {26, "250"},      {27, "1.000"},    {30, "1000"},
+          {31, "0"},        {32, "0"},        {100, "250.000"}, {101, "250.000"}, {102, "250.000"},
+          {110, "500.000"}, {111, "500.000"}, {112, "500.000"}, {120, "10.000"},  {121, "10.000"},
+          {122, "10.000"},  {130, "200.000"}, {131, "200.000"}, {132, "200.000"}};
 }
 
 class GrblSim::Machine {
@@ -122,7 +122,8 @@ private:
       }
     }
     char buffer[4096];
-    const auto n = channel_->read(std::span<char>(buffer, std::min(allowed, sizeof buffer)), timeout);
+    const auto n =
+        channel_->read(std::span<char>(buffer, std::min(allowed, sizeof buffer)), timeout);
     if (channel_->connected() && !was_connected_) {
       on_connect();
     }
@@ -188,9 +189,9 @@ private:
       }
       if (!holding_ && !alarm_locked_) {
         holding_ = true;
-        hold_done_at_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(
-                                               planner_.stop_seconds() / options_.motion.speed));
+        hold_done_at_ = Clock::now() +
+                        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                            planner_.stop_seconds() / options_.motion.speed));
       }
       break;
     case rt_resume:
@@ -502,11 +503,13 @@ private:
     if (options_.report_build_options) {
       const std::string blocks = std::to_string(options_.planner_blocks - 1);
       const std::string rx = std::to_string(options_.rx_buffer);
-      send(options_.grblhal ? "[OPT:VNML+," + blocks + "," + rx + "," + std::to_string(options_.axes) + ",0]"
-                            : "[OPT:V," + blocks + "," + rx + "]");
+      send(options_.grblhal
+               ? "[OPT:VNML+," + blocks + "," + rx + "," + std::to_string(options_.axes) + ",0]"
+               : "[OPT:V," + blocks + "," + rx + "]");
     }
     if (options_.grblhal) {
-      send("[AXS:" + std::to_string(options_.axes) + ":" + std::string("XYZABC").substr(0, static_cast<std::size_t>(options_.axes)) + "]");
+      send("[AXS:" + std::to_string(options_.axes) + ":" +
+           std::string("XYZABC").substr(0, static_cast<std::size_t>(options_.axes)) + "]");
       send("[NEWOPT:ENUMS,RT+,HOME,TC]");
       send("[FIRMWARE:grblHAL]");
     }
@@ -572,8 +575,9 @@ private:
     std::size_t allowed = wire_out_.size();
     if (options_.baud > 0) {
       const auto now = Clock::now();
-      out_tokens_ = std::min(64.0, out_tokens_ + std::chrono::duration<double>(now - last_flush_).count() *
-                                                     options_.baud / 10.0);
+      out_tokens_ =
+          std::min(64.0, out_tokens_ + std::chrono::duration<double>(now - last_flush_).count() *
+                                           options_.baud / 10.0);
       last_flush_ = now;
       allowed = std::min(allowed, static_cast<std::size_t>(out_tokens_));
     }
@@ -601,7 +605,8 @@ private:
     std::string report = "<" + state + (options_.report_wpos ? "|WPos:" : "|MPos:");
     char number[32];
     for (int a = 0; a < options_.axes; ++a) {
-      std::snprintf(number, sizeof number, "%s%.3f", a == 0 ? "" : ",", p[static_cast<std::size_t>(a)]);
+      std::snprintf(number, sizeof number, "%s%.3f", a == 0 ? "" : ",",
+                    p[static_cast<std::size_t>(a)]);
       report += number;
     }
     report += "|Bf:" + std::to_string(planner_.free_blocks()) + "," +
@@ -625,9 +630,9 @@ private:
   MotionPlanner planner_;
   std::deque<char> rx_;
   std::deque<std::pair<Clock::time_point, std::string>> outgoing_;
-  std::string wire_out_;          // released replies not yet on the wire
-  std::deque<long> error_ends_;   // output offsets at which an error reply has fully left
-  long out_queued_ = 0;           // bytes written to the wire so far
+  std::string wire_out_;        // released replies not yet on the wire
+  std::deque<long> error_ends_; // output offsets at which an error reply has fully left
+  long out_queued_ = 0;         // bytes written to the wire so far
   double out_tokens_ = 0.0;
   Clock::time_point last_flush_ = Clock::now();
   std::map<int, std::string> settings_;
@@ -662,7 +667,9 @@ GrblSim::GrblSim(std::unique_ptr<ByteChannel> channel, GrblSimOptions options)
     : machine_(std::make_unique<Machine>(std::move(channel), std::move(options))),
       address_(machine_->address()) {}
 
-GrblSim::~GrblSim() { stop(); }
+GrblSim::~GrblSim() {
+  stop();
+}
 
 void GrblSim::start() {
   thread_ = std::jthread([this](const std::stop_token& stop) { machine_->run(stop); });
@@ -675,8 +682,12 @@ void GrblSim::stop() {
   }
 }
 
-void GrblSim::run(const std::stop_token& stop) { machine_->run(stop); }
+void GrblSim::run(const std::stop_token& stop) {
+  machine_->run(stop);
+}
 
-GrblSimStats GrblSim::stats() const { return machine_->stats(); }
+GrblSimStats GrblSim::stats() const {
+  return machine_->stats();
+}
 
 } // namespace subfeed::sim

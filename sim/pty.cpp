@@ -1,13 +1,13 @@
 #include "sim/pty.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
 #include <poll.h>
 #include <termios.h>
-#include <unistd.h>
-#include <algorithm>
 #include <thread>
+#include <unistd.h>
 #include <utility>
 
 namespace subfeed::sim {

@@ -28,30 +28,46 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
   cmd.add_option("--axes", c.sim.axes, "Axes (3..6: XYZ, then A, B, C)")->check(CLI::Range(3, 6));
   cmd.add_option("--rx", c.sim.rx_buffer, "Serial RX buffer, bytes")->check(CLI::Range(16, 65536));
   cmd.add_option("--planner", c.sim.planner_blocks, "Planner blocks")->check(CLI::Range(2, 1024));
-  cmd.add_option("--line-limit", c.sim.line_limit, "Longest line, characters")->check(CLI::Range(16, 1024));
-  cmd.add_option("--baud", c.sim.baud, "Emulated wire speed, baud (0 = unlimited)")->check(CLI::Range(0, 4000000));
+  cmd.add_option("--line-limit", c.sim.line_limit, "Longest line, characters")
+      ->check(CLI::Range(16, 1024));
+  cmd.add_option("--baud", c.sim.baud, "Emulated wire speed, baud (0 = unlimited)")
+      ->check(CLI::Range(0, 4000000));
   cmd.add_flag("--grblhal", c.sim.grblhal, "Behave as grblHAL (banner, [OPT:], latching errors)");
   cmd.add_flag("--wpos", c.sim.report_wpos, "Report WPos instead of MPos");
   cmd.add_option("--speed", c.sim.motion.speed, "Run the machine N times faster than real time")
       ->check(CLI::PositiveNumber);
-  cmd.add_option("--accel", c.sim.motion.acceleration_mm_s2, "Acceleration, mm/s^2")->check(CLI::PositiveNumber);
-  cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")->check(CLI::PositiveNumber);
+  cmd.add_option("--accel", c.sim.motion.acceleration_mm_s2, "Acceleration, mm/s^2")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")
+      ->check(CLI::PositiveNumber);
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
-  cmd.add_option("--log", c.sim.executed_log, "Append every executed line to FILE")->type_name("FILE");
+  cmd.add_option("--log", c.sim.executed_log, "Append every executed line to FILE")
+      ->type_name("FILE");
   cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error");
-  cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")->check(CLI::Range(1, 255));
-  cmd.add_option("--alarm-after", c.alarm_after_s, "Fault: ALARM this many seconds after the first program line");
-  cmd.add_option("--alarm-code", c.sim.faults.alarm_code, "Alarm code for --alarm-after")->check(CLI::Range(1, 255));
-  cmd.add_option("--reset-on-line", c.reset_on_line, "Fault: the controller resets itself at program line K");
-  cmd.add_option("--disconnect-on-line", c.disconnect_on_line, "Fault: the link drops at program line K");
-  cmd.add_option("--garbage-on-line", c.garbage_on_line, "Fault: line noise before the reply to program line K");
-  cmd.add_option("--lose-ack-on-line", c.lose_ack_on_line, "Fault: never acknowledge program line K");
-  cmd.add_option("--ack-delay", c.ack_delay_ms, "Fault: delay every reply by up to MS milliseconds")->type_name("MS");
+  cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")
+      ->check(CLI::Range(1, 255));
+  cmd.add_option("--alarm-after", c.alarm_after_s,
+                 "Fault: ALARM this many seconds after the first program line");
+  cmd.add_option("--alarm-code", c.sim.faults.alarm_code, "Alarm code for --alarm-after")
+      ->check(CLI::Range(1, 255));
+  cmd.add_option("--reset-on-line", c.reset_on_line,
+                 "Fault: the controller resets itself at program line K");
+  cmd.add_option("--disconnect-on-line", c.disconnect_on_line,
+                 "Fault: the link drops at program line K");
+  cmd.add_option("--garbage-on-line", c.garbage_on_line,
+                 "Fault: line noise before the reply to program line K");
+  cmd.add_option("--lose-ack-on-line", c.lose_ack_on_line,
+                 "Fault: never acknowledge program line K");
+  cmd.add_option("--ack-delay", c.ack_delay_ms, "Fault: delay every reply by up to MS milliseconds")
+      ->type_name("MS");
   cmd.add_option("--seed", c.sim.faults.seed, "Random seed for delays");
-  cmd.add_option("--boot-ms", c.boot_ms, "Boot time after a connection (GRBL on Arduino resets on open)");
+  cmd.add_option("--boot-ms", c.boot_ms,
+                 "Boot time after a connection (GRBL on Arduino resets on open)");
 }
 
-std::optional<long> positive(long v) { return v > 0 ? std::optional<long>(v) : std::nullopt; }
+std::optional<long> positive(long v) {
+  return v > 0 ? std::optional<long>(v) : std::nullopt;
+}
 
 int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   c.sim.faults.error_on_line = positive(c.error_on_line);
@@ -74,10 +90,11 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
     channel = std::make_unique<Pty>(std::move(*pty));
   } else {
     const auto colon = c.tcp.rfind(':');
-    auto listener = colon == std::string::npos
-                        ? subfeed::Expected<TcpListener>(subfeed::fail(
-                              subfeed::ErrorCode::usage, "expected HOST:PORT", {{}, 0, "--tcp"}))
-                        : TcpListener::open(c.tcp.substr(0, colon), std::stoi(c.tcp.substr(colon + 1)));
+    auto listener =
+        colon == std::string::npos
+            ? subfeed::Expected<TcpListener>(
+                  subfeed::fail(subfeed::ErrorCode::usage, "expected HOST:PORT", {{}, 0, "--tcp"}))
+            : TcpListener::open(c.tcp.substr(0, colon), std::stoi(c.tcp.substr(colon + 1)));
     if (!listener) {
       std::cerr << "subfeed-sim: error: " << listener.error().describe() << std::endl;
       return subfeed::exit_code(listener.error().code);
@@ -92,8 +109,9 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   sim.stop();
   const auto stats = sim.stats();
   std::cerr << "subfeed-sim: " << stats.executed_count << " lines executed, " << stats.overrun_bytes
-            << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations, " << stats.alarms_sent
-            << " alarms, " << stats.resets << " resets, state " << stats.state << std::endl;
+            << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations, "
+            << stats.alarms_sent << " alarms, " << stats.resets << " resets, state " << stats.state
+            << std::endl;
   return 0;
 }
 

@@ -78,7 +78,8 @@ ControlThread::~ControlThread() {
 
 void ControlThread::run(drivers::ControlInbox& inbox, bool keyboard) {
   while (true) {
-    pollfd fds[3] = {{quit_fd_.get(), POLLIN, 0}, {signal_fd_.get(), POLLIN, 0},
+    pollfd fds[3] = {{quit_fd_.get(), POLLIN, 0},
+                     {signal_fd_.get(), POLLIN, 0},
                      {keyboard ? STDIN_FILENO : -1, POLLIN, 0}};
     if (::poll(fds, 3, -1) < 0) {
       continue;

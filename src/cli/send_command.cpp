@@ -39,11 +39,11 @@ struct SendOptions {
 struct Link {
   std::unique_ptr<sim::GrblSim> simulator; // declared first: dies after the port
   std::unique_ptr<drivers::Transport> transport;
-  std::optional<int> baud;                 // for link use; none for TCP
+  std::optional<int> baud; // for link use; none for TCP
 };
 
 drivers::SerialParity to_driver(post::Parity p) {
-  return p == post::Parity::even ? drivers::SerialParity::even
+  return p == post::Parity::even  ? drivers::SerialParity::even
          : p == post::Parity::odd ? drivers::SerialParity::odd
                                   : drivers::SerialParity::none;
 }
@@ -100,14 +100,16 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
     sim_options.line_limit = sim_options.grblhal ? 256 : 79;
     sim_options.baud = o.sim_baud >= 0 ? o.sim_baud : serial.baud;
     sim_options.motion.speed = o.sim_speed;
-    link.simulator = std::make_unique<sim::GrblSim>(std::make_unique<sim::Pty>(std::move(pty)), sim_options);
+    link.simulator =
+        std::make_unique<sim::GrblSim>(std::make_unique<sim::Pty>(std::move(pty)), sim_options);
     link.simulator->start();
     port = link.simulator->address();
     link.baud = sim_options.baud > 0 ? std::optional<int>(sim_options.baud) : std::nullopt;
   }
   if (!o.tcp.empty()) {
-    SUBFEED_TRY_ASSIGN(auto tcp, drivers::TcpTransport::connect(
-                                     o.tcp, std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1000))));
+    SUBFEED_TRY_ASSIGN(
+        auto tcp, drivers::TcpTransport::connect(o.tcp, std::chrono::milliseconds(static_cast<long>(
+                                                            o.connect_timeout_s * 1000))));
     link.transport = std::make_unique<drivers::TcpTransport>(std::move(tcp));
     return link;
   }
@@ -127,14 +129,16 @@ Expected<void> send(SendOptions o, Logger& log) {
   if (o.line_limit > 0) {
     o.stream.line_limit = o.line_limit;
   }
-  o.stream.connect_timeout = std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1000));
+  o.stream.connect_timeout =
+      std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1000));
   SUBFEED_TRY_ASSIGN(const auto serial, apply_machine(o));
   SUBFEED_TRY_ASSIGN(auto source, drivers::GcodeSource::open(o.file, {}));
   SUBFEED_TRY_ASSIGN(auto link, open_link(o, serial));
   SUBFEED_TRY_ASSIGN(auto inbox, drivers::ControlInbox::create());
   StreamReporter reporter(log, o.json);
   const ControlThread control(*inbox, !o.json);
-  const auto summary = drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), reporter);
+  const auto summary =
+      drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), reporter);
   if (!summary) {
     reporter.failed(summary.error());
     return std::unexpected(summary.error());
@@ -147,37 +151,45 @@ Expected<void> send(SendOptions o, Logger& log) {
 
 void add_send_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<SendOptions>();
-  CLI::App* cmd = app.add_subcommand("send", "Drip-feed a G-code file to a GRBL or grblHAL controller");
+  CLI::App* cmd =
+      app.add_subcommand("send", "Drip-feed a G-code file to a GRBL or grblHAL controller");
   cmd->add_option("file", o->file, "G-code program")->required()->type_name("FILE.nc");
   auto* link = cmd->add_option_group("link", "Where the controller is (exactly one)");
-  link->add_option("--port", o->port, "Serial port (any tty path, ptys included)")->type_name("DEV");
-  link->add_option("--tcp", o->tcp, "TCP stream (grblHAL Ethernet, serial-to-TCP server)")->type_name("HOST:PORT");
+  link->add_option("--port", o->port, "Serial port (any tty path, ptys included)")
+      ->type_name("DEV");
+  link->add_option("--tcp", o->tcp, "TCP stream (grblHAL Ethernet, serial-to-TCP server)")
+      ->type_name("HOST:PORT");
   link->add_option("--sim", o->sim, "Start a simulated controller on a pty and stream to it")
       ->check(CLI::IsMember({"grbl", "grblhal"}));
   link->require_option(1);
-  cmd->add_option("--machine", o->machine, "Machine config: serial settings, line length, rx buffer")
+  cmd->add_option("--machine", o->machine,
+                  "Machine config: serial settings, line length, rx buffer")
       ->type_name("M.toml");
   cmd->add_option("--baud", o->baud, "Serial baud rate (default 115200 or the machine's)");
-  cmd->add_option("--rx-buffer", o->rx_buffer, "Controller RX buffer in bytes (default: read from $I, else 128)")
+  cmd->add_option("--rx-buffer", o->rx_buffer,
+                  "Controller RX buffer in bytes (default: read from $I, else 128)")
       ->check(CLI::Range(16, 65536));
-  cmd->add_option("--line-limit", o->line_limit, "Longest line the controller takes (default 79, grblHAL 256)")
+  cmd->add_option("--line-limit", o->line_limit,
+                  "Longest line the controller takes (default 79, grblHAL 256)")
       ->check(CLI::Range(16, 1024));
-  cmd->add_flag("--send-and-wait", o->stream.send_and_wait, "Send each line alone and wait for its answer");
+  cmd->add_flag("--send-and-wait", o->stream.send_and_wait,
+                "Send each line alone and wait for its answer");
   cmd->add_flag("--keep-comments", o->stream.keep_comments, "Send comments and spaces as written");
   cmd->add_flag("--continue-on-error", o->stream.continue_on_error,
                 "Report error:N answers and go on (for check runs)");
-  cmd->add_flag("--check", o->stream.check_first, "Run the file through check mode ($C) first; stop on any error");
-  cmd->add_option("--status-hz", o->stream.status_hz, "Status polls per second")->check(CLI::Range(0.5, 20.0));
+  cmd->add_flag("--check", o->stream.check_first,
+                "Run the file through check mode ($C) first; stop on any error");
+  cmd->add_option("--status-hz", o->stream.status_hz, "Status polls per second")
+      ->check(CLI::Range(0.5, 20.0));
   cmd->add_option("--connect-timeout", o->connect_timeout_s, "Seconds to wait for the controller")
       ->check(CLI::Range(0.1, 600.0));
-  cmd->add_option("--sim-speed", o->sim_speed, "With --sim: run the machine N times faster than real time")
+  cmd->add_option("--sim-speed", o->sim_speed,
+                  "With --sim: run the machine N times faster than real time")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
-  cmd->callback([&chosen, o] {
-    chosen = [o](Logger& log) { return send(*o, log); };
-  });
+  cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return send(*o, log); }; });
 }
 
 } // namespace subfeed::cli

@@ -45,7 +45,9 @@ StreamReporter::StreamReporter(Logger& log, bool json)
     : log_(log), json_(json),
       terminal_(!json && log.verbosity() != Verbosity::quiet && ::isatty(STDERR_FILENO) != 0) {}
 
-StreamReporter::~StreamReporter() { end_progress_line(); }
+StreamReporter::~StreamReporter() {
+  end_progress_line();
+}
 
 void StreamReporter::end_progress_line() {
   if (progress_shown_) {
@@ -55,8 +57,8 @@ void StreamReporter::end_progress_line() {
 }
 
 void StreamReporter::connected(const drivers::ControllerInfo& info) {
-  const std::string rx = fmt::format("{} bytes{}", info.rx_buffer,
-                                     info.rx_buffer_reported ? " (from $I)" : "");
+  const std::string rx =
+      fmt::format("{} bytes{}", info.rx_buffer, info.rx_buffer_reported ? " (from $I)" : "");
   if (json_) {
     std::printf("{\"event\":\"connected\",\"grblhal\":%s,\"version\":\"%s\",\"rx_buffer\":%d,"
                 "\"line_limit\":%d}\n",
@@ -77,7 +79,8 @@ void StreamReporter::progress(const drivers::StreamProgress& p) {
   }
   last_update_ = now;
   last_state_ = state;
-  const double fraction = p.lines_total > 0 ? static_cast<double>(p.lines_acked) / p.lines_total : 0.0;
+  const double fraction =
+      p.lines_total > 0 ? static_cast<double>(p.lines_acked) / p.lines_total : 0.0;
   const double eta = fraction > 0.0 ? p.elapsed_s * (1.0 - fraction) / fraction : 0.0;
   if (json_) {
     std::printf("{\"event\":\"progress\",\"checking\":%s,\"acked\":%ld,\"sent\":%ld,\"total\":%ld,"
@@ -102,12 +105,13 @@ void StreamReporter::message(std::string_view line) {
 }
 
 void StreamReporter::line_error(const drivers::LineError& e) {
-  const std::string text = fmt::format("{}:{}: error:{} ({}){}", e.file, e.line, e.code,
-                                       drivers::error_meaning(e.code),
-                                       e.latched ? " [latched: rejected for the error before it]" : "");
+  const std::string text =
+      fmt::format("{}:{}: error:{} ({}){}", e.file, e.line, e.code, drivers::error_meaning(e.code),
+                  e.latched ? " [latched: rejected for the error before it]" : "");
   if (json_) {
-    std::printf("{\"event\":\"line_error\",\"file\":\"%s\",\"line\":%ld,\"code\":%d,\"latched\":%s}\n",
-                json_escape(e.file).c_str(), e.line, e.code, e.latched ? "true" : "false");
+    std::printf(
+        "{\"event\":\"line_error\",\"file\":\"%s\",\"line\":%ld,\"code\":%d,\"latched\":%s}\n",
+        json_escape(e.file).c_str(), e.line, e.code, e.latched ? "true" : "false");
     std::fflush(stdout);
   }
   end_progress_line();
@@ -125,25 +129,27 @@ void StreamReporter::phase(std::string_view name) {
 void StreamReporter::finished(const drivers::StreamSummary& s, std::optional<int> baud) {
   end_progress_line();
   const double rate = s.seconds > 0.0 ? s.bytes / s.seconds : 0.0;
-  const std::string link = baud ? fmt::format(", link use {:.1f}% of {} baud", 100.0 * rate / (*baud / 10.0), *baud)
-                                : std::string();
+  const std::string link =
+      baud ? fmt::format(", link use {:.1f}% of {} baud", 100.0 * rate / (*baud / 10.0), *baud)
+           : std::string();
   if (json_) {
-    std::printf("{\"event\":\"done\",\"lines\":%ld,\"bytes\":%ld,\"seconds\":%.3f,\"bytes_per_s\":%.1f,"
-                "\"errors\":%ld}\n",
-                s.lines, s.bytes, s.seconds, rate, s.errors);
+    std::printf(
+        "{\"event\":\"done\",\"lines\":%ld,\"bytes\":%ld,\"seconds\":%.3f,\"bytes_per_s\":%.1f,"
+        "\"errors\":%ld}\n",
+        s.lines, s.bytes, s.seconds, rate, s.errors);
     std::fflush(stdout);
     return;
   }
-  log_.info(fmt::format("done: {} lines, {} bytes in {:.2f} s ({:.0f} bytes/s{}){}", s.lines, s.bytes,
-                        s.seconds, rate, link,
-                        s.errors > 0 ? fmt::format(", {} lines answered with errors", s.errors) : ""));
+  log_.info(fmt::format(
+      "done: {} lines, {} bytes in {:.2f} s ({:.0f} bytes/s{}){}", s.lines, s.bytes, s.seconds,
+      rate, link, s.errors > 0 ? fmt::format(", {} lines answered with errors", s.errors) : ""));
 }
 
 void StreamReporter::failed(const Error& error) {
   end_progress_line();
   if (json_) {
-    std::printf("{\"event\":\"failed\",\"exit_code\":%d,\"message\":\"%s\"}\n", exit_code(error.code),
-                json_escape(error.describe()).c_str());
+    std::printf("{\"event\":\"failed\",\"exit_code\":%d,\"message\":\"%s\"}\n",
+                exit_code(error.code), json_escape(error.describe()).c_str());
     std::fflush(stdout);
   }
 }

@@ -40,7 +40,8 @@ TEST_CASE("send --sim streams a file and summarises", "[pty]") {
 TEST_CASE("send --json prints one event per line", "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(50, 3000));
-  const auto r = run_process({bin, "send", job.string(), "--sim", "grblhal", "--sim-speed", "1000", "--json"});
+  const auto r =
+      run_process({bin, "send", job.string(), "--sim", "grblhal", "--sim-speed", "1000", "--json"});
   CHECK(r.exit_code == 0);
   const auto connected = r.out.find("{\"event\":\"connected\",\"grblhal\":true,");
   CHECK(connected != std::string::npos);
@@ -58,17 +59,21 @@ TEST_CASE("send with a machine config takes its settings; a fanuc machine is ref
   const auto fanuc = run_process({bin, "send", job.string(), "--sim", "grbl", "--machine",
                                   source_dir + "/configs/fanuc-xyzac-trt.toml"});
   CHECK(fanuc.exit_code == 2);
-  CHECK(fanuc.err.find("controller.protocol: this machine's controller speaks the fanuc protocol") !=
-        std::string::npos);
+  CHECK(
+      fanuc.err.find("controller.protocol: this machine's controller speaks the fanuc protocol") !=
+      std::string::npos);
 }
 
 TEST_CASE("send refuses bad command lines and bad files with the right exit code", "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(5, 3000));
   CHECK(run_process({bin, "send", job.string()}).exit_code == 1); // no link
-  CHECK(run_process({bin, "send", job.string(), "--sim", "grbl", "--port", "/dev/null"}).exit_code == 1);
+  CHECK(
+      run_process({bin, "send", job.string(), "--sim", "grbl", "--port", "/dev/null"}).exit_code ==
+      1);
   CHECK(run_process({bin, "send", job.string(), "--sim", "fanuc"}).exit_code == 1);
-  const auto missing = run_process({bin, "send", (dir.path() / "nope.nc").string(), "--sim", "grbl"});
+  const auto missing =
+      run_process({bin, "send", (dir.path() / "nope.nc").string(), "--sim", "grbl"});
   CHECK(missing.exit_code == 2);
   CHECK(missing.err.find("nope.nc: cannot open G-code file") != std::string::npos);
   const auto bad = dir.write("bad.nc", "G1 X1 F100\nG1 X2 (why?)\n");
@@ -89,12 +94,13 @@ TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exit
   REQUIRE(port.starts_with("/dev/pts/"));
   const auto r = run_process({bin, "send", job.string(), "--port", port});
   CHECK(r.exit_code == 3);
-  CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in block)") !=
-        std::string::npos);
+  CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in "
+                   "block)") != std::string::npos);
   sim.signal(SIGTERM);
   const auto served = sim.wait();
   CHECK(served.exit_code == 0);
-  CHECK(served.err.find(" 0 bytes overrun, 0 EEPROM violations, 0 alarms, 1 resets") != std::string::npos);
+  CHECK(served.err.find(" 0 bytes overrun, 0 EEPROM violations, 0 alarms, 1 resets") !=
+        std::string::npos);
 }
 
 TEST_CASE("Ctrl-C stops the machine safely and exits 4", "[pty]") {

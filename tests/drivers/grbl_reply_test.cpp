@@ -92,7 +92,8 @@ TEST_CASE("lines the controller would misread are refused with their location") 
   const subfeed::Where where{"job.nc", 7, {}};
   const auto question = prepare_line("G1 X1 (why?)", rules, where);
   REQUIRE_FALSE(question);
-  CHECK(question.error().describe() == "job.nc:7: '?' would act as a realtime command on the controller");
+  CHECK(question.error().describe() ==
+        "job.nc:7: '?' would act as a realtime command on the controller");
   CHECK_FALSE(prepare_line("G1 X1 !", rules, where));
   CHECK_FALSE(prepare_line("G1 X1 ~", rules, where));
   const auto high = prepare_line("G1 X1 \xc2\xb0", rules, where);
@@ -102,7 +103,8 @@ TEST_CASE("lines the controller would misread are refused with their location") 
         "control character byte 0x01 in line");
   const auto longer = prepare_line("G1X" + std::string(77, '1'), rules, where);
   REQUIRE_FALSE(longer);
-  CHECK(longer.error().message == "line is 80 characters after stripping; the controller takes at most 79");
+  CHECK(longer.error().message ==
+        "line is 80 characters after stripping; the controller takes at most 79");
   CHECK(prepare_line("G1X" + std::string(76, '1') + " (long comments do not count)", rules, where));
 }
 

@@ -152,7 +152,8 @@ TEST_CASE("a line over the limit stops the job before anything is sent", "[pty]"
   REQUIRE_FALSE(result);
   CHECK(result.error().code == ErrorCode::bad_input);
   CHECK(result.error().where.line == 2);
-  CHECK(result.error().message == "line is 80 characters after stripping; the controller takes at most 79");
+  CHECK(result.error().message ==
+        "line is 80 characters after stripping; the controller takes at most 79");
   CHECK(bench.sim->stats().program_lines == 0);
 }
 
@@ -268,7 +269,8 @@ TEST_CASE("a lost acknowledgement is detected and named", "[pty]") {
   const std::string program = random_program(100, 79, 15);
   const auto result = bench.stream(program);
   REQUIRE_FALSE(result);
-  CHECK(result.error().message.starts_with("acknowledgement lost: the controller is idle but 1 line(s) are unanswered"));
+  CHECK(result.error().message.starts_with(
+      "acknowledgement lost: the controller is idle but 1 line(s) are unanswered"));
   // The lost answer leaves the count one line high, so streaming stalls and is stopped.
   const auto executed = bench.sim->stats().executed;
   const auto expected = stripped_lines(program);
@@ -331,8 +333,9 @@ TEST_CASE("with --check the file runs through check mode, then for real", "[pty]
     const std::string program = random_program(120, 79, 17);
     const auto summary = bench.stream(program, options);
     const auto seen = bench.sim->stats();
-    INFO("sim: program lines " << seen.program_lines << ", checked " << seen.checked_lines << ", state "
-                               << seen.state << ", resets " << seen.resets << ", rx fill " << seen.max_rx_fill);
+    INFO("sim: program lines " << seen.program_lines << ", checked " << seen.checked_lines
+                               << ", state " << seen.state << ", resets " << seen.resets
+                               << ", rx fill " << seen.max_rx_fill);
     REQUIRE(summary);
     const auto stats = bench.sim->stats();
     CHECK(stats.checked_lines == static_cast<long>(stripped_lines(program).size()));
@@ -360,7 +363,8 @@ TEST_CASE("a controller in alarm is not streamed to", "[pty]") {
   GrblBench bench(o);
   const auto result = bench.stream(random_program(10, 79, 20));
   REQUIRE_FALSE(result);
-  CHECK(result.error().message == "the controller is in ALARM state: home it ($H) or unlock it ($X) first");
+  CHECK(result.error().message ==
+        "the controller is in ALARM state: home it ($H) or unlock it ($X) first");
   CHECK(bench.sim->stats().program_lines == 0);
 }
 
@@ -374,8 +378,8 @@ TEST_CASE("a port with no controller behind it times out with a clear message", 
   subfeed::testing::RecordingObserver observer;
   const auto result = subfeed::drivers::stream_grbl(port, source, options, nullptr, observer);
   REQUIRE_FALSE(result);
-  CHECK(result.error().message ==
-        "no answer from a GRBL controller within 300 ms (is it powered, and are the port and baud rate right?)");
+  CHECK(result.error().message == "no answer from a GRBL controller within 300 ms (is it powered, "
+                                  "and are the port and baud rate right?)");
 }
 
 TEST_CASE("streaming over TCP to a grblHAL", "[pty]") {
@@ -392,7 +396,8 @@ TEST_CASE("streaming over TCP to a grblHAL", "[pty]") {
   const std::string program = random_program(300, 120, 21);
   auto source = subfeed::drivers::GcodeSource::open(dir.write("a.nc", program), {}).value();
   subfeed::testing::RecordingObserver observer;
-  const auto summary = subfeed::drivers::stream_grbl(*link, source, GrblBench::fast_options(), nullptr, observer);
+  const auto summary =
+      subfeed::drivers::stream_grbl(*link, source, GrblBench::fast_options(), nullptr, observer);
   REQUIRE(summary);
   CHECK(sim.stats().executed == stripped_lines(program));
 }
@@ -415,7 +420,8 @@ TEST_CASE("soak: 100,000 lines with random lengths, reply delays and polls", "[p
   CHECK(stats.status_queries > 10);
 }
 
-TEST_CASE("the simulator drops and counts bytes a naive sender pushes past its RX buffer", "[pty]") {
+TEST_CASE("the simulator drops and counts bytes a naive sender pushes past its RX buffer",
+          "[pty]") {
   auto o = fast_sim();
   o.motion.speed = 1.0; // the planner fills and stops taking lines
   GrblBench bench(o);
@@ -437,7 +443,8 @@ TEST_CASE("the simulator answers an over-long line with error:11", "[pty]") {
   std::string reply;
   char buffer[256];
   const auto deadline = std::chrono::steady_clock::now() + 1s;
-  while (reply.find("error:11") == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+  while (reply.find("error:11") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
     reply.append(buffer, bench.port->read(buffer, 50ms).value_or(0));
   }
   CHECK(reply.find("error:11\r\n") != std::string::npos);
@@ -445,10 +452,12 @@ TEST_CASE("the simulator answers an over-long line with error:11", "[pty]") {
 
 TEST_CASE("system commands mid-program wait for idle and their output is never counted", "[pty]") {
   GrblBench bench(fast_sim());
-  const std::string program = random_program(50, 79, 23) + "$$\n$G\n$#\n" + random_program(50, 79, 24);
+  const std::string program =
+      random_program(50, 79, 23) + "$$\n$G\n$#\n" + random_program(50, 79, 24);
   const auto summary = bench.stream(program);
   REQUIRE(summary);
-  CHECK(std::ranges::count_if(bench.observer.messages, [](const std::string& m) { return m.starts_with("$"); }) > 20);
+  CHECK(std::ranges::count_if(bench.observer.messages,
+                              [](const std::string& m) { return m.starts_with("$"); }) > 20);
   CHECK(bench.sim->stats().errors_sent == 0); // no error:8 for a $ command while running
   CHECK(bench.sim->stats().executed.size() == stripped_lines(program).size() - 3);
 }
@@ -461,4 +470,29 @@ TEST_CASE("with --keep-comments lines go as written and the controller strips th
   REQUIRE(bench.stream(program, options));
   CHECK(bench.sim->stats().executed == std::vector<std::string>{"G21G90", "G1F1000", "G1X10Y5"});
   CHECK(bench.observer.last.bytes_sent == static_cast<long>(program.size()));
+}
+
+TEST_CASE("a stop while waiting for a silent controller ends at once", "[pty]") {
+  auto pty = subfeed::sim::Pty::open().value();
+  auto port = subfeed::drivers::SerialPort::open(pty.slave_path(), {}).value();
+  subfeed::testing::TempDir dir;
+  auto source = subfeed::drivers::GcodeSource::open(dir.write("a.nc", "G1X1F100\n"), {}).value();
+  auto options = GrblBench::fast_options();
+  options.connect_timeout = 10s;
+  auto inbox = ControlInbox::create().value();
+  inbox->push({ControlCommand::Kind::stop, 0});
+  subfeed::testing::RecordingObserver observer;
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = subfeed::drivers::stream_grbl(port, source, options, inbox.get(), observer);
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::stopped);
+  CHECK(std::chrono::steady_clock::now() - start < 2s);
+}
+
+TEST_CASE("an empty program connects, sends nothing and ends", "[pty]") {
+  GrblBench bench(fast_sim());
+  const auto summary = bench.stream("(nothing to do)\n\n");
+  REQUIRE(summary);
+  CHECK(summary->lines == 0);
+  CHECK(bench.sim->stats().program_lines == 0);
 }

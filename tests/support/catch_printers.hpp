@@ -7,8 +7,7 @@
 
 namespace Catch {
 
-template <class T>
-struct StringMaker<subfeed::Expected<T>> {
+template <class T> struct StringMaker<subfeed::Expected<T>> {
   static std::string convert(const subfeed::Expected<T>& value) {
     return value ? std::string("{value}") : "{error: " + value.error().describe() + "}";
   }

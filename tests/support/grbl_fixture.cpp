@@ -61,10 +61,11 @@ std::string random_program(int count, int max_length, unsigned seed) {
     std::snprintf(xs, sizeof xs, "%.3f", x);
     std::snprintf(ys, sizeof ys, "%.3f", y);
     // Trailing zeros on X spread the lengths up to the limit without changing the move.
-    const int room = max_length - static_cast<int>(std::string("G1X").size() + std::strlen(xs) +
-                                                   1 + std::strlen(ys));
+    const int room = max_length - static_cast<int>(std::string("G1X").size() + std::strlen(xs) + 1 +
+                                                   std::strlen(ys));
     const int zeros = room > 0 ? pad(rng) % (room + 1) : 0;
-    program += "G1X" + std::string(xs) + std::string(static_cast<std::size_t>(zeros), '0') + "Y" + ys + "\n";
+    program += "G1X" + std::string(xs) + std::string(static_cast<std::size_t>(zeros), '0') + "Y" +
+               ys + "\n";
   }
   return program;
 }

@@ -37,9 +37,9 @@ struct GrblBench {
   explicit GrblBench(sim::GrblSimOptions options);
 
   // Streams `program` (written to a temp file) with `options`; `inbox` may be null.
-  Expected<drivers::StreamSummary> stream(const std::string& program,
-                                          const drivers::GrblStreamOptions& options = fast_options(),
-                                          drivers::ControlInbox* inbox = nullptr);
+  Expected<drivers::StreamSummary>
+  stream(const std::string& program, const drivers::GrblStreamOptions& options = fast_options(),
+         drivers::ControlInbox* inbox = nullptr);
 
   // Options with short timeouts so that failing tests fail fast.
   static drivers::GrblStreamOptions fast_options();

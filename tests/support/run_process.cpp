@@ -1,6 +1,5 @@
 #include "support/run_process.hpp"
 
-
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -91,7 +90,9 @@ std::string BackgroundProcess::first_line() {
   return end == std::string::npos ? std::string() : out_.substr(0, end);
 }
 
-void BackgroundProcess::signal(int number) const { ::kill(pid_, number); }
+void BackgroundProcess::signal(int number) const {
+  ::kill(pid_, number);
+}
 
 ProcessResult BackgroundProcess::wait() {
   if (waited_) {

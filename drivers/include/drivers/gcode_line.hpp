@@ -18,7 +18,7 @@ struct LineRules {
 };
 
 struct PreparedLine {
-  std::string text;          // without the line ending; empty for a blank or comment line
+  std::string text;           // without the line ending; empty for a blank or comment line
   bool send_and_wait = false; // must be sent alone (EEPROM write or system command)
 };
 

@@ -24,7 +24,8 @@ struct ScanSummary {
 
 class GcodeSource {
 public:
-  [[nodiscard]] static Expected<GcodeSource> open(const std::filesystem::path& path, LineRules rules);
+  [[nodiscard]] static Expected<GcodeSource> open(const std::filesystem::path& path,
+                                                  LineRules rules);
 
   // Reads the whole file once, checking every line.
   [[nodiscard]] Expected<ScanSummary> scan();

@@ -36,7 +36,6 @@ public:
   [[nodiscard]] static Expected<SerialPort> open(const std::string& path,
                                                  const SerialOptions& options);
 
-
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout);
   [[nodiscard]] Expected<std::size_t> write(std::span<const char> bytes,

@@ -25,24 +25,25 @@ struct GrblFaults {
   // Counts are of program lines (G-code, not `$` commands), from 1.
   std::optional<long> error_on_line; // reply error:error_code instead of running it
   int error_code = 20;
-  std::optional<double> alarm_after_s; // raise ALARM:alarm_code this long after the first program line
+  std::optional<double>
+      alarm_after_s; // raise ALARM:alarm_code this long after the first program line
   int alarm_code = 1;
-  std::optional<long> reset_on_line;      // the controller resets itself (brown-out)
-  std::optional<long> disconnect_on_line; // the link drops
-  std::optional<long> garbage_on_line;    // a burst of line noise before the reply
-  std::optional<long> lose_ack_on_line;   // the `ok` never comes
+  std::optional<long> reset_on_line;          // the controller resets itself (brown-out)
+  std::optional<long> disconnect_on_line;     // the link drops
+  std::optional<long> garbage_on_line;        // a burst of line noise before the reply
+  std::optional<long> lose_ack_on_line;       // the `ok` never comes
   std::chrono::milliseconds max_ack_delay{0}; // every reply delayed by up to this (random)
   unsigned seed = 1;
 };
 
 struct GrblSimOptions {
-  int axes = 3;              // 3..6 (XYZ, then A, B, C)
-  int rx_buffer = 128;       // bytes
+  int axes = 3;        // 3..6 (XYZ, then A, B, C)
+  int rx_buffer = 128; // bytes
   int planner_blocks = 16;
-  int line_limit = 79;       // characters after spaces and comments are removed
-  int baud = 115200;         // emulated wire speed, both directions; 0 = unlimited
-  bool grblhal = false;      // grblHAL banner, [OPT:] and latching errors
-  bool report_wpos = false;  // WPos instead of MPos in status reports
+  int line_limit = 79;      // characters after spaces and comments are removed
+  int baud = 115200;        // emulated wire speed, both directions; 0 = unlimited
+  bool grblhal = false;     // grblHAL banner, [OPT:] and latching errors
+  bool report_wpos = false; // WPos instead of MPos in status reports
   // GRBL on an Arduino resets when its port opens and boots for about 1.5 s, dropping what
   // arrives meanwhile, then prints its banner. grblHAL does not reset on connect.
   std::chrono::milliseconds boot_time{50};
@@ -53,31 +54,31 @@ struct GrblSimOptions {
   // Keep every executed line in stats (tests); off, memory stays flat however long the job:
   // executed_count and executed_hash still prove delivery.
   bool record_executed = false;
-  std::string executed_log;    // also append each executed line to this file, if set
+  std::string executed_log; // also append each executed line to this file, if set
 };
 
 struct GrblSimStats {
   std::vector<std::string> executed; // accepted program lines, as received (stripped), in order
   long executed_count = 0;
   std::uint64_t executed_hash = 1469598103934665603ULL; // FNV-1a over executed lines and '\n'
-  long checked_lines = 0;            // program lines answered in check mode ($C)
-  long program_lines = 0;            // program lines received, accepted or not
-  long overrun_bytes = 0;            // bytes dropped because the RX buffer was full
-  long eeprom_violations = 0;        // EEPROM writes while more bytes were waiting
-  int max_rx_fill = 0;               // most bytes ever waiting in the RX buffer
+  long checked_lines = 0;                               // program lines answered in check mode ($C)
+  long program_lines = 0;                               // program lines received, accepted or not
+  long overrun_bytes = 0;     // bytes dropped because the RX buffer was full
+  long eeprom_violations = 0; // EEPROM writes while more bytes were waiting
+  int max_rx_fill = 0;        // most bytes ever waiting in the RX buffer
   long errors_sent = 0;
   long alarms_sent = 0;
-  long resets = 0;                   // soft resets received (0x18)
-  long feed_holds = 0;               // '!' received
-  long status_queries = 0;           // '?' received
-  long overrides = 0;                // override bytes received
-  std::size_t starvations = 0;       // planner ran dry while lines were still coming
+  long resets = 0;                        // soft resets received (0x18)
+  long feed_holds = 0;                    // '!' received
+  long status_queries = 0;                // '?' received
+  long overrides = 0;                     // override bytes received
+  std::size_t starvations = 0;            // planner ran dry while lines were still coming
   std::vector<std::string> status_states; // every state reported, in order
   // For latency measurements: milliseconds from writing an error:N reply to receiving the
   // sender's feed hold, and when each override byte arrived.
   std::vector<double> error_to_hold_ms;
   std::vector<std::chrono::steady_clock::time_point> override_times;
-  std::string state;                 // state now
+  std::string state; // state now
   bool check_mode = false;
 };
 

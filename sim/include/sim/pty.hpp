@@ -20,7 +20,6 @@ class Pty final : public ByteChannel {
 public:
   [[nodiscard]] static Expected<Pty> open();
 
-
   [[nodiscard]] int master_fd() const { return master_.get(); }
   [[nodiscard]] const std::string& slave_path() const { return slave_path_; }
 

@@ -13,7 +13,6 @@ public:
   // `port` 0 picks a free port; address() then tells which.
   [[nodiscard]] static Expected<TcpListener> open(const std::string& host, int port);
 
-
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
                                            std::chrono::milliseconds timeout) override;
   [[nodiscard]] Expected<void> write_all(std::span<const char> bytes) override;
@@ -25,7 +24,8 @@ public:
   [[nodiscard]] bool connected() const override { return peer_.valid(); }
 
 private:
-  TcpListener(int listen_fd, std::string address) : listen_(listen_fd), address_(std::move(address)) {}
+  TcpListener(int listen_fd, std::string address)
+      : listen_(listen_fd), address_(std::move(address)) {}
 
   UniqueFd listen_;
   UniqueFd peer_;
