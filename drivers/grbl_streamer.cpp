@@ -357,17 +357,17 @@ private:
     return {};
   }
 
+  // Status polls always expect an answer, so silence means a lost controller at any time,
+  // also while waiting for the last moves to finish.
   Expected<void> check_silence() {
-    if (in_flight_.empty()) {
-      return {};
-    }
     const auto now = Clock::now();
     if (now - last_byte_at_ > options_.silence_timeout) {
       fail_with(ErrorCode::machine_fault,
                 "no answer from the controller for " +
                     std::to_string(options_.silence_timeout.count()) + " ms" + acked_note(),
                 last_acked_line_);
-    } else if (status_ && (status_->state == "Idle" || status_->state == "Check") &&
+    } else if (!in_flight_.empty() && status_ &&
+               (status_->state == "Idle" || status_->state == "Check") &&
                status_at_ > std::max(last_ack_at_, in_flight_.front().sent_at) + lost_ack_after) {
       // Answers carry no line number: after a lost one every later answer retired the line
       // before its own, so which line lost its answer cannot be told.
@@ -554,6 +554,7 @@ private:
 
   Expected<void> stream_pass() {
     SUBFEED_TRY(source_.rewind());
+    last_byte_at_ = Clock::now(); // scanning a long file is not the controller's silence
     std::optional<SourceLine> next;
     bool end_of_file = false;
     while (true) {

@@ -159,7 +159,7 @@ private:
   }
 
   void on_byte(unsigned char c) {
-    if (booting_until_) {
+    if (booting_until_ || frozen_) {
       return; // the bootloader is running: nothing reaches the firmware
     }
     if (c == rt_status || c == rt_hold || c == rt_resume || c == rt_reset || c >= 0x80) {
@@ -323,7 +323,7 @@ private:
 
   void process_lines() {
     const std::lock_guard lock(mutex_);
-    while (!critical_ && has_complete_line() && !planner_.full()) {
+    while (!critical_ && !frozen_ && has_complete_line() && !planner_.full()) {
       const auto end = std::ranges::find_if(rx_, [](char c) { return c == '\n' || c == '\r'; });
       const bool lf = *end == '\n';
       std::string raw(rx_.begin(), end);
@@ -379,6 +379,10 @@ private:
     const auto& f = options_.faults;
     if (f.disconnect_on_line && number == *f.disconnect_on_line) {
       channel_->close();
+      return;
+    }
+    if (f.freeze_on_line && number == *f.freeze_on_line) {
+      frozen_ = true;
       return;
     }
     if (f.reset_on_line && number == *f.reset_on_line) {
@@ -654,6 +658,7 @@ private:
   bool alarm_locked_ = false;
   bool critical_ = false;
   bool alarm_fired_ = false;
+  bool frozen_ = false;
   bool skip_lf_ = false;
   bool override_changed_ = false;
   int latched_error_ = 0;

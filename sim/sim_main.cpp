@@ -18,7 +18,7 @@ struct GrblCommand {
   GrblSimOptions sim;
   std::string tcp; // host:port; empty for a pty
   long error_on_line = 0, reset_on_line = 0, disconnect_on_line = 0, garbage_on_line = 0,
-       lose_ack_on_line = 0;
+       lose_ack_on_line = 0, freeze_on_line = 0;
   double alarm_after_s = 0.0;
   long ack_delay_ms = 0;
   long boot_ms = 50;
@@ -75,6 +75,7 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   c.sim.faults.disconnect_on_line = positive(c.disconnect_on_line);
   c.sim.faults.garbage_on_line = positive(c.garbage_on_line);
   c.sim.faults.lose_ack_on_line = positive(c.lose_ack_on_line);
+  c.sim.faults.freeze_on_line = positive(c.freeze_on_line);
   c.sim.faults.max_ack_delay = std::chrono::milliseconds(c.ack_delay_ms);
   c.sim.boot_time = std::chrono::milliseconds(c.boot_ms);
   if (c.alarm_after_s > 0.0) {

@@ -496,3 +496,15 @@ TEST_CASE("an empty program connects, sends nothing and ends", "[pty]") {
   CHECK(summary->lines == 0);
   CHECK(bench.sim->stats().program_lines == 0);
 }
+
+TEST_CASE("a controller that hangs, even on its last line, is reported as silent", "[pty]") {
+  auto o = fast_sim();
+  o.faults.freeze_on_line = 52; // the last line of the program
+  GrblBench bench(o);
+  auto options = GrblBench::fast_options();
+  options.silence_timeout = 500ms;
+  const auto result = bench.stream(random_program(50, 79, 25), options);
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::machine_fault);
+  CHECK(result.error().message.starts_with("no answer from the controller for 500 ms"));
+}

@@ -32,6 +32,7 @@ struct GrblFaults {
   std::optional<long> disconnect_on_line;     // the link drops
   std::optional<long> garbage_on_line;        // a burst of line noise before the reply
   std::optional<long> lose_ack_on_line;       // the `ok` never comes
+  std::optional<long> freeze_on_line;         // the firmware hangs: nothing is answered any more
   std::chrono::milliseconds max_ack_delay{0}; // every reply delayed by up to this (random)
   unsigned seed = 1;
 };
