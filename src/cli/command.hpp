@@ -20,5 +20,6 @@ using Action = std::function<Expected<void>(Logger&)>;
 void add_inspect_command(CLI::App& app, Action& chosen);
 void add_config_command(CLI::App& app, Action& chosen);
 void add_send_command(CLI::App& app, Action& chosen);
+void add_ports_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

@@ -7,6 +7,7 @@
 #include "stream_reporter.hpp"
 
 #include "drivers/grbl_streamer.hpp"
+#include "drivers/port_list.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/tcp_transport.hpp"
 #include "post/machine_config.hpp"
@@ -113,8 +114,15 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
     link.transport = std::make_unique<drivers::TcpTransport>(std::move(tcp));
     return link;
   }
-  SUBFEED_TRY_ASSIGN(auto serial_port, drivers::SerialPort::open(port, serial));
-  link.transport = std::make_unique<drivers::SerialPort>(std::move(serial_port));
+  auto serial_port = drivers::SerialPort::open(port, serial);
+  if (!serial_port) {
+    Error error = serial_port.error();
+    if (const auto ports = drivers::list_serial_ports(); ports && o.sim.empty()) {
+      error.message += "; serial ports here: " + drivers::describe_ports(*ports);
+    }
+    return std::unexpected(error);
+  }
+  link.transport = std::make_unique<drivers::SerialPort>(std::move(*serial_port));
   if (o.sim.empty()) {
     link.baud = serial.baud;
   }

@@ -83,7 +83,12 @@ TEST_CASE("send refuses bad command lines and bad files with the right exit code
                             ":2: '?' would act as a realtime command on the controller\n");
   const auto no_port = run_process({bin, "send", job.string(), "--port", "/dev/nonexistent-tty"});
   CHECK(no_port.exit_code == 3);
-  CHECK(no_port.err.find("/dev/nonexistent-tty: cannot open serial port") != std::string::npos);
+  CHECK(
+      no_port.err.find("/dev/nonexistent-tty: cannot open serial port: No such file or directory; "
+                       "serial ports here: ") != std::string::npos);
+  const auto ports = run_process({bin, "ports"});
+  CHECK(ports.exit_code == 0);
+  CHECK_FALSE(ports.out.empty());
 }
 
 TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exits 3", "[pty]") {

@@ -1,7 +1,9 @@
+#include "drivers/port_list.hpp"
 #include "drivers/serial_port.hpp"
 #include "sim/pty.hpp"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 using namespace std::chrono_literals;
 using subfeed::drivers::SerialOptions;
@@ -81,4 +83,23 @@ TEST_CASE("an unsupported baud rate is a bad-input error", "[pty]") {
   REQUIRE_FALSE(port);
   CHECK(port.error().code == subfeed::ErrorCode::bad_input);
   CHECK(port.error().message == "unsupported baud rate 12345");
+}
+
+TEST_CASE("listed serial ports exist and are described", "[pty]") {
+  const auto ports = subfeed::drivers::list_serial_ports();
+  REQUIRE(ports);
+  for (const auto& port : *ports) {
+    INFO(port.path);
+    CHECK(std::filesystem::exists(port.path));
+    CHECK((port.transport == "native" || port.transport == "usb" || port.transport == "bluetooth"));
+  }
+}
+
+TEST_CASE("a port list reads as paths with descriptions") {
+  using subfeed::drivers::PortInfo;
+  CHECK(subfeed::drivers::describe_ports({}) == "none");
+  const std::vector<PortInfo> ports{
+      {"/dev/ttyUSB0", "FT232R USB UART", "usb", 0x0403, 0x6001, "FTDI", "FT232R", "A1"},
+      {"/dev/ttyS0", "", "native", {}, {}, "", "", ""}};
+  CHECK(subfeed::drivers::describe_ports(ports) == "/dev/ttyUSB0 (FT232R USB UART), /dev/ttyS0");
 }
