@@ -115,7 +115,8 @@ Expected<AxisSet> read_axes(TomlTableReader& top, KinematicsType type) {
 Expected<int> direction(TomlTableReader& table, std::string_view key) {
   SUBFEED_TRY_ASSIGN(const long value, table.integer(key));
   if (value != 1 && value != -1) {
-    return table.invalid(key, "must be 1 (right-hand rule) or -1 (LinuxCNC default)");
+    return table.invalid(
+        key, "must be 1 (ISO: the tool turns by the right-hand rule) or -1 (LinuxCNC default)");
   }
   return static_cast<int>(value);
 }

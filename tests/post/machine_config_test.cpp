@@ -132,9 +132,9 @@ TEST_CASE("values out of range are errors naming the key and the range") {
                "m.toml:24: axes.a.max: must be greater than min");
   expect_error(replace(trt, "min = -100.0\nmax = 50.0", "min = -4000.0\nmax = 50.0"),
                "m.toml:23: axes.a.min: -4000 deg is outside -3600..3600 deg");
-  expect_error(
-      replace(trt, "c_direction = 1", "c_direction = 0"),
-      "m.toml:9: kinematics.c_direction: must be 1 (right-hand rule) or -1 (LinuxCNC default)");
+  expect_error(replace(trt, "c_direction = 1", "c_direction = 0"),
+               "m.toml:9: kinematics.c_direction: must be 1 (ISO: the tool turns by the right-hand "
+               "rule) or -1 (LinuxCNC default)");
   expect_error(replace(trt, "kinematics = \"xyzac-trt\"", "kinematics = \"xyzbc\""),
                "m.toml:3: machine.kinematics: 'xyzbc' is not one of xyz, xyzac-trt");
   expect_error(trt + "rx_buffer = 8\n", "m.toml:31: controller.rx_buffer: 8 is outside 16..65536");

@@ -42,8 +42,9 @@ struct AxisLimits {
 
 using AxisSet = std::array<std::optional<AxisLimits>, axis_letters.size()>;
 
-// LinuxCNC xyzac-trt parameters (PROTOCOLS.md). direction: +1 right-hand rule, -1 the
-// LinuxCNC default (opposite).
+// LinuxCNC xyzac-trt parameters (PROTOCOLS.md). direction +1: ISO 841, a positive angle
+// moves the tool relative to the work by the right-hand rule (the table turns the other
+// way); -1: the opposite, LinuxCNC's default.
 struct TableTableGeometry {
   std::array<double, 3> pivot{}; // rotation point (xr, yr, zr), mm, machine frame
   double y_offset = 0.0;         // Dy, mm
