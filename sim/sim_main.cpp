@@ -111,8 +111,9 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   const auto stats = sim.stats();
   std::cerr << "subfeed-sim: " << stats.executed_count << " lines executed, " << stats.overrun_bytes
             << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations, "
-            << stats.alarms_sent << " alarms, " << stats.resets << " resets, state " << stats.state
-            << std::endl;
+            << stats.alarms_sent << " alarms, " << stats.resets << " resets, " << stats.feed_holds
+            << " feed holds, " << stats.overrides << " overrides, " << stats.starvations
+            << " planner starvations, state " << stats.state << std::endl;
   return 0;
 }
 

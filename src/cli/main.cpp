@@ -6,6 +6,7 @@
 #include "logger.hpp"
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <exception>
 #include <iostream>
 
@@ -68,6 +69,9 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
+  // A closed stdout (`subfeed send --json | head -1`) must not kill a sender mid-job with
+  // the machine running: writes to it just fail instead.
+  std::signal(SIGPIPE, SIG_IGN);
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 // `subfeed send` and `subfeed-sim` as a user runs them, over real ptys.
 
+#include "sim/pty.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -134,4 +135,34 @@ TEST_CASE("subfeed-sim serves TCP for send --tcp", "[pty]") {
   const auto r = run_process({bin, "send", job.string(), "--tcp", address});
   CHECK(r.exit_code == 0);
   CHECK(r.out.starts_with("done: 52 lines"));
+}
+
+TEST_CASE("a reader that closes the JSON pipe early does not kill the job", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(300, 3000));
+  const std::string command = bin + " send " + job.string() +
+                              " --sim grbl --sim-speed 1000 --json | head -c 1 > /dev/null; "
+                              "exit ${PIPESTATUS[0]}";
+  const auto r = run_process({"/bin/bash", "-c", command});
+  CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("keys on the terminal reach the controller as realtime commands", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(100, 600)); // slow enough to type into
+  BackgroundProcess sim({sim_bin, "grbl"});
+  const std::string port = sim.first_line();
+  auto terminal = subfeed::sim::Pty::open().value(); // the user's terminal
+  BackgroundProcess sender({bin, "send", job.string(), "--port", port}, terminal.slave_path());
+  std::this_thread::sleep_for(700ms);
+  REQUIRE(terminal.write_all(std::string_view("++-")));
+  std::this_thread::sleep_for(200ms);
+  REQUIRE(terminal.write_all(std::string_view("q")));
+  const auto sent = sender.wait();
+  CHECK(sent.exit_code == 4);
+  sim.signal(SIGTERM);
+  const auto served = sim.wait();
+  INFO("sender: " << sent.err << " / sim: " << served.err);
+  CHECK(served.err.find("3 overrides") != std::string::npos);
+  CHECK(served.err.find("0 alarms, 1 resets, 1 feed holds") != std::string::npos);
 }

@@ -34,7 +34,8 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
 
 namespace subfeed::testing {
 
-BackgroundProcess::BackgroundProcess(const std::vector<std::string>& argv) {
+BackgroundProcess::BackgroundProcess(const std::vector<std::string>& argv,
+                                     const std::string& stdin_path) {
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) {
     throw std::runtime_error("pipe failed");
@@ -44,7 +45,7 @@ BackgroundProcess::BackgroundProcess(const std::vector<std::string>& argv) {
   err_file_ = pattern;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 0, stdin_path.c_str(), O_RDWR, 0);
   posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 1);
   posix_spawn_file_actions_adddup2(&actions, err_fd, 2);
   posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);

@@ -24,7 +24,9 @@ namespace subfeed::testing {
 // SIGKILL if still running when destroyed.
 class BackgroundProcess {
 public:
-  explicit BackgroundProcess(const std::vector<std::string>& argv);
+  // `stdin_path` is opened as the program's standard input (a pty slave makes it a terminal).
+  explicit BackgroundProcess(const std::vector<std::string>& argv,
+                             const std::string& stdin_path = "/dev/null");
   BackgroundProcess(const BackgroundProcess&) = delete;
   BackgroundProcess& operator=(const BackgroundProcess&) = delete;
   ~BackgroundProcess();
