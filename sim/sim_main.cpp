@@ -2,6 +2,7 @@
 // protocol is a subcommand; the address a sender connects to (a tty path, or host:port) is
 // printed on stdout and the simulator serves until it is sent SIGINT or SIGTERM.
 
+#include "sim/fanuc_sim.hpp"
 #include "sim/grbl_sim.hpp"
 #include "sim/pty.hpp"
 #include "sim/tcp_listener.hpp"
@@ -117,6 +118,80 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   return 0;
 }
 
+struct FanucCommand {
+  FanucSimOptions sim;
+  std::string framing = "7E2";
+  long stuck_xoff_at = 0, lose_xon_after = 0, drop_at = 0;
+  long max_pause_ms = 0;
+};
+
+void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
+  cmd.add_option("--buffer", c.sim.buffer, "Receive buffer, bytes")->check(CLI::Range(16, 1 << 20));
+  cmd.add_option("--high", c.sim.high_water, "Send DC3 (XOFF) at this fill")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd.add_option("--low", c.sim.low_water, "Send DC1 (XON) again at this fill")
+      ->check(CLI::Range(0, 1 << 20));
+  cmd.add_option("--baud", c.sim.baud, "Emulated wire speed, baud (0 = unlimited)")
+      ->check(CLI::Range(0, 4000000));
+  cmd.add_option("--framing", c.framing, "Data bits, parity, stop bits, e.g. 7E2 or 8N1");
+  cmd.add_option("--overrun-tolerance", c.sim.overrun_tolerance,
+                 "Characters after DC3 before alarm 087")
+      ->check(CLI::Range(0, 100000));
+  cmd.add_flag("--request-tape", c.sim.request_tape,
+               "Ask for the tape (DC1) when a sender connects");
+  cmd.add_flag("--eia", c.sim.eia_cr, "Blocks end with CR (EIA option) instead of LF");
+  cmd.add_option("--speed", c.sim.motion.speed, "Run the machine N times faster than real time")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--stuck-xoff-at", c.stuck_xoff_at, "Fault: DC3 at block K and never DC1 again");
+  cmd.add_option("--lose-xon-after", c.lose_xon_after,
+                 "Fault: the DC1 owed after block K is never sent");
+  cmd.add_option("--drop-at", c.drop_at, "Fault: the link drops at block K");
+  cmd.add_option("--max-pause", c.max_pause_ms,
+                 "Drain jitter: random stalls of up to MS milliseconds")
+      ->type_name("MS");
+  cmd.add_option("--seed", c.sim.seed, "Random seed for stalls");
+}
+
+int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
+  if (c.framing.size() != 3 || (c.framing[0] != '7' && c.framing[0] != '8') ||
+      std::string("NEO").find(c.framing[1]) == std::string::npos ||
+      (c.framing[2] != '1' && c.framing[2] != '2')) {
+    std::cerr << "subfeed-sim: usage: --framing: expected e.g. 7E2 or 8N1, got '" << c.framing
+              << "'" << std::endl;
+    return 1;
+  }
+  if (c.sim.low_water >= c.sim.high_water || c.sim.high_water > c.sim.buffer) {
+    std::cerr << "subfeed-sim: usage: need --low < --high <= --buffer" << std::endl;
+    return 1;
+  }
+  c.sim.data_bits = c.framing[0] - '0';
+  c.sim.parity = c.framing[1];
+  c.sim.stop_bits = c.framing[2] - '0';
+  c.sim.faults.stuck_xoff_at_block = positive(c.stuck_xoff_at);
+  c.sim.faults.lose_xon_after_block = positive(c.lose_xon_after);
+  c.sim.faults.drop_at_block = positive(c.drop_at);
+  c.sim.max_block_pause = std::chrono::milliseconds(c.max_pause_ms);
+  c.sim.pause_one_in = 20;
+  auto pty = Pty::open();
+  if (!pty) {
+    std::cerr << "subfeed-sim: error: " << pty.error().describe() << std::endl;
+    return 3;
+  }
+  FanucSim control(std::make_unique<Pty>(std::move(*pty)), c.sim);
+  control.start();
+  std::cout << control.address() << std::endl;
+  int signal = 0;
+  sigwait(&signals, &signal);
+  control.stop();
+  const auto stats = control.stats();
+  std::cerr << "subfeed-sim: " << stats.executed_count << " blocks executed, program "
+            << (stats.program_number.empty() ? "-" : stats.program_number) << ", "
+            << stats.xoff_sent << " XOFF, " << stats.xon_sent << " XON, at most "
+            << stats.max_after_xoff << " characters after XOFF, alarm "
+            << (stats.alarm.empty() ? "none" : stats.alarm) << std::endl;
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -133,6 +208,10 @@ int main(int argc, char** argv) {
   GrblCommand grbl;
   CLI::App* grbl_cmd = app.add_subcommand("grbl", "A GRBL 1.1 / grblHAL controller");
   add_grbl_options(*grbl_cmd, grbl);
+  FanucCommand fanuc;
+  CLI::App* fanuc_cmd =
+      app.add_subcommand("fanuc", "A Fanuc-style control reading a program by DNC");
+  add_fanuc_options(*fanuc_cmd, fanuc);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -144,6 +223,9 @@ int main(int argc, char** argv) {
   }
   if (grbl_cmd->parsed()) {
     return serve_grbl(grbl, signals);
+  }
+  if (fanuc_cmd->parsed()) {
+    return serve_fanuc(fanuc, signals);
   }
   return 1;
 }

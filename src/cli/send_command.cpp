@@ -6,11 +6,13 @@
 #include "control_thread.hpp"
 #include "stream_reporter.hpp"
 
+#include "drivers/fanuc_streamer.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/port_list.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/tcp_transport.hpp"
 #include "post/machine_config.hpp"
+#include "sim/fanuc_sim.hpp"
 #include "sim/grbl_sim.hpp"
 #include "sim/pty.hpp"
 
@@ -34,11 +36,19 @@ struct SendOptions {
   double sim_speed = 1.0;
   int sim_baud = -1; // -1: the link's baud
   bool json = false;
+  std::string protocol; // grbl or fanuc; default from --sim, --machine, else grbl
+  std::string data_bits, parity, stop_bits, flow; // framing flags (empty: config or default)
   drivers::GrblStreamOptions stream;
+  drivers::FanucStreamOptions dnc;
+  std::string eob = "lf";
+  double request_timeout_s = 60.0;
+  double xoff_timeout_s = 30.0;
+  long from_line = 0;
 };
 
 struct Link {
   std::unique_ptr<sim::GrblSim> simulator; // declared first: dies after the port
+  std::unique_ptr<sim::FanucSim> control;
   std::unique_ptr<drivers::Transport> transport;
   std::optional<int> baud; // for link use; none for TCP
 };
@@ -63,16 +73,42 @@ drivers::SerialFlow to_driver(post::FlowControl f) {
   return drivers::SerialFlow::none;
 }
 
+void apply_framing_flags(const SendOptions& o, drivers::SerialOptions& serial) {
+  if (o.baud > 0) {
+    serial.baud = o.baud;
+  }
+  if (!o.data_bits.empty()) {
+    serial.data_bits = std::stoi(o.data_bits);
+  }
+  if (!o.parity.empty()) {
+    serial.parity = o.parity == "even"  ? drivers::SerialParity::even
+                    : o.parity == "odd" ? drivers::SerialParity::odd
+                                        : drivers::SerialParity::none;
+  }
+  if (!o.stop_bits.empty()) {
+    serial.stop_bits = std::stoi(o.stop_bits);
+  }
+  if (!o.flow.empty()) {
+    serial.flow = o.flow == "xon-xoff"  ? drivers::SerialFlow::xon_xoff
+                  : o.flow == "rts-cts" ? drivers::SerialFlow::rts_cts
+                  : o.flow == "both"    ? drivers::SerialFlow::both
+                                        : drivers::SerialFlow::none;
+  }
+}
+
 // Settings from --machine, then flags on top.
 Expected<drivers::SerialOptions> apply_machine(SendOptions& o) {
   drivers::SerialOptions serial;
   if (!o.machine.empty()) {
     SUBFEED_TRY_ASSIGN(const auto config, post::load_machine_config(o.machine));
-    if (config.controller.protocol != post::Protocol::grbl) {
-      return fail(ErrorCode::bad_input,
-                  "this machine's controller speaks the fanuc protocol; send supports grbl so far",
+    const std::string protocol(post::to_string(config.controller.protocol));
+    if (!o.protocol.empty() && o.protocol != protocol) {
+      return fail(ErrorCode::usage,
+                  "--protocol " + o.protocol + " contradicts the machine's " + protocol,
                   {o.machine, 0, "controller.protocol"});
     }
+    o.protocol = protocol;
+    o.dnc.program_number = config.controller.program_number;
     const auto& s = config.controller.serial;
     serial = {s.baud, s.data_bits, to_driver(s.parity), s.stop_bits, to_driver(s.flow_control)};
     if (!o.stream.line_limit) {
@@ -82,16 +118,47 @@ Expected<drivers::SerialOptions> apply_machine(SendOptions& o) {
       o.stream.rx_buffer = *config.controller.rx_buffer;
     }
   }
-  if (o.baud > 0) {
-    serial.baud = o.baud;
+  if (!o.sim.empty()) {
+    const std::string simulated = o.sim == "fanuc" ? "fanuc" : "grbl";
+    if (!o.protocol.empty() && o.protocol != simulated) {
+      return fail(ErrorCode::usage,
+                  "--sim " + o.sim + " speaks " + simulated + ", not the " + o.protocol +
+                      " protocol",
+                  {{}, 0, "--sim"});
+    }
+    o.protocol = simulated;
   }
+  if (o.protocol.empty()) {
+    o.protocol = "grbl";
+  }
+  if (o.protocol == "fanuc" && o.machine.empty()) {
+    serial = o.dnc.serial; // 7E2 with XON/XOFF, the common ISO tape setting
+  }
+  apply_framing_flags(o, serial);
   return serial;
 }
 
 Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& serial) {
   Link link;
   std::string port = o.port;
-  if (!o.sim.empty()) {
+  if (o.sim == "fanuc") {
+    SUBFEED_TRY_ASSIGN(auto pty, sim::Pty::open());
+    sim::FanucSimOptions control;
+    control.baud = o.sim_baud >= 0 ? o.sim_baud : serial.baud;
+    control.data_bits = serial.data_bits;
+    control.parity = serial.parity == drivers::SerialParity::none
+                         ? 'N'
+                         : (serial.parity == drivers::SerialParity::odd ? 'O' : 'E');
+    control.stop_bits = serial.stop_bits;
+    control.request_tape = o.dnc.wait_for_request;
+    control.eia_cr = o.dnc.eia_cr;
+    control.motion.speed = o.sim_speed;
+    link.control =
+        std::make_unique<sim::FanucSim>(std::make_unique<sim::Pty>(std::move(pty)), control);
+    link.control->start();
+    port = link.control->address();
+    link.baud = control.baud > 0 ? std::optional<int>(control.baud) : std::nullopt;
+  } else if (!o.sim.empty()) {
     SUBFEED_TRY_ASSIGN(auto pty, sim::Pty::open());
     sim::GrblSimOptions sim_options;
     sim_options.grblhal = o.sim == "grblhal";
@@ -114,7 +181,8 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
     link.transport = std::make_unique<drivers::TcpTransport>(std::move(tcp));
     return link;
   }
-  auto serial_port = drivers::SerialPort::open(port, serial);
+  const auto port_options = o.protocol == "fanuc" ? drivers::dnc_port_options(serial) : serial;
+  auto serial_port = drivers::SerialPort::open(port, port_options);
   if (!serial_port) {
     Error error = serial_port.error();
     if (const auto ports = drivers::list_serial_ports(); ports && o.sim.empty()) {
@@ -127,6 +195,24 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
     link.baud = serial.baud;
   }
   return link;
+}
+
+Expected<drivers::StreamSummary> send_dnc(SendOptions& o, const drivers::SerialOptions& serial,
+                                          drivers::Transport& link, drivers::ControlInbox* inbox,
+                                          StreamReporter& reporter) {
+  if (!o.tcp.empty()) {
+    return fail(ErrorCode::usage, "fanuc drip feed runs over a serial port, not --tcp",
+                {{}, 0, "--tcp"});
+  }
+  SUBFEED_TRY_ASSIGN(auto program, drivers::FanucProgram::open(o.file));
+  o.dnc.serial = serial;
+  o.dnc.eia_cr = o.eob == "cr";
+  o.dnc.request_timeout = std::chrono::milliseconds(static_cast<long>(o.request_timeout_s * 1000));
+  o.dnc.xoff_timeout = std::chrono::milliseconds(static_cast<long>(o.xoff_timeout_s * 1000));
+  if (o.from_line > 0) {
+    o.dnc.from_line = o.from_line;
+  }
+  return drivers::stream_fanuc(link, program, o.dnc, inbox, reporter);
 }
 
 Expected<void> send(SendOptions o, Logger& log) {
@@ -146,12 +232,14 @@ Expected<void> send(SendOptions o, Logger& log) {
   StreamReporter reporter(log, o.json);
   const ControlThread control(*inbox, !o.json);
   const auto summary =
-      drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), reporter);
+      o.protocol == "fanuc"
+          ? send_dnc(o, serial, *link.transport, inbox.get(), reporter)
+          : drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), reporter);
   if (!summary) {
     reporter.failed(summary.error());
     return std::unexpected(summary.error());
   }
-  reporter.finished(*summary, link.baud);
+  reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));
   return {};
 }
 
@@ -168,7 +256,7 @@ void add_send_command(CLI::App& app, Action& chosen) {
   link->add_option("--tcp", o->tcp, "TCP stream (grblHAL Ethernet, serial-to-TCP server)")
       ->type_name("HOST:PORT");
   link->add_option("--sim", o->sim, "Start a simulated controller on a pty and stream to it")
-      ->check(CLI::IsMember({"grbl", "grblhal"}));
+      ->check(CLI::IsMember({"grbl", "grblhal", "fanuc"}));
   link->require_option(1);
   cmd->add_option("--machine", o->machine,
                   "Machine config: serial settings, line length, rx buffer")
@@ -197,6 +285,36 @@ void add_send_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
+  cmd->add_option("--protocol", o->protocol, "grbl (character counting) or fanuc (DNC drip feed)")
+      ->check(CLI::IsMember({"grbl", "fanuc"}));
+  cmd->add_option("--data-bits", o->data_bits, "Serial data bits")
+      ->check(CLI::IsMember({"7", "8"}));
+  cmd->add_option("--parity", o->parity, "Serial parity")
+      ->check(CLI::IsMember({"none", "even", "odd"}));
+  cmd->add_option("--stop-bits", o->stop_bits, "Serial stop bits")
+      ->check(CLI::IsMember({"1", "2"}));
+  cmd->add_option("--flow", o->flow, "Flow control")
+      ->check(CLI::IsMember({"none", "xon-xoff", "rts-cts", "both"}));
+  cmd->add_option("--eob", o->eob, "fanuc: end of block, lf (ISO) or cr (EIA option)")
+      ->check(CLI::IsMember({"lf", "cr"}));
+  cmd->add_option("--program-number", o->dnc.program_number,
+                  "fanuc: O-number when the file has no framing")
+      ->check(CLI::Range(1, 9999));
+  cmd->add_option("--nul-leader", o->dnc.nul_leader, "fanuc: NUL characters before the program")
+      ->check(CLI::Range(0, 10000));
+  cmd->add_option("--nul-trailer", o->dnc.nul_trailer, "fanuc: NUL characters after it")
+      ->check(CLI::Range(0, 10000));
+  cmd->add_flag("--wait-for-request", o->dnc.wait_for_request,
+                "fanuc: send once the control requests the tape (DC1)");
+  cmd->add_option("--request-timeout", o->request_timeout_s,
+                  "fanuc: seconds to wait for the request")
+      ->check(CLI::Range(0.1, 3600.0));
+  cmd->add_option("--xoff-timeout", o->xoff_timeout_s,
+                  "fanuc: seconds the control may hold the tape")
+      ->check(CLI::Range(0.1, 3600.0));
+  cmd->add_option("--from", o->from_line,
+                  "fanuc: restart at this file line, restoring the modal state first")
+      ->check(CLI::PositiveNumber);
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return send(*o, log); }; });
 }
 

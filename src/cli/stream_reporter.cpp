@@ -33,7 +33,7 @@ std::string json_escape(std::string_view text) {
 
 std::string state_text(const drivers::StreamProgress& p) {
   if (!p.status) {
-    return "?";
+    return p.link_state.empty() ? "?" : p.link_state;
   }
   return p.status->substate >= 0 ? fmt::format("{}:{}", p.status->state, p.status->substate)
                                  : p.status->state;
@@ -126,12 +126,13 @@ void StreamReporter::phase(std::string_view name) {
   log_.detail(fmt::format("phase: {}", name));
 }
 
-void StreamReporter::finished(const drivers::StreamSummary& s, std::optional<int> baud) {
+void StreamReporter::finished(const drivers::StreamSummary& s, std::optional<int> baud,
+                              int bits_per_character) {
   end_progress_line();
   const double rate = s.seconds > 0.0 ? s.bytes / s.seconds : 0.0;
-  const std::string link =
-      baud ? fmt::format(", link use {:.1f}% of {} baud", 100.0 * rate / (*baud / 10.0), *baud)
-           : std::string();
+  const std::string link = baud ? fmt::format(", link use {:.1f}% of {} baud",
+                                              100.0 * rate * bits_per_character / *baud, *baud)
+                                : std::string();
   if (json_) {
     std::printf(
         "{\"event\":\"done\",\"lines\":%ld,\"bytes\":%ld,\"seconds\":%.3f,\"bytes_per_s\":%.1f,"

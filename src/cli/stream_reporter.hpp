@@ -22,7 +22,9 @@ public:
   void phase(std::string_view name) override;
 
   // After the stream: the summary line, or the error as a JSON event.
-  void finished(const drivers::StreamSummary& summary, std::optional<int> baud);
+  // `baud` and `bits_per_character` give the wire's capacity, for the link use.
+  void finished(const drivers::StreamSummary& summary, std::optional<int> baud,
+                int bits_per_character);
   void failed(const Error& error);
 
 private:

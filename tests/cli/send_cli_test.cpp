@@ -51,7 +51,8 @@ TEST_CASE("send --json prints one event per line", "[pty]") {
   CHECK(r.out.find("{\"event\":\"done\",\"lines\":52,") != std::string::npos);
 }
 
-TEST_CASE("send with a machine config takes its settings; a fanuc machine is refused", "[pty]") {
+TEST_CASE("send with a machine config takes its settings; a contradicting simulator is refused",
+          "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(20, 3000));
   const auto ok = run_process({bin, "send", job.string(), "--sim", "grbl", "--sim-speed", "1000",
@@ -59,10 +60,8 @@ TEST_CASE("send with a machine config takes its settings; a fanuc machine is ref
   CHECK(ok.exit_code == 0);
   const auto fanuc = run_process({bin, "send", job.string(), "--sim", "grbl", "--machine",
                                   source_dir + "/configs/fanuc-xyzac-trt.toml"});
-  CHECK(fanuc.exit_code == 2);
-  CHECK(
-      fanuc.err.find("controller.protocol: this machine's controller speaks the fanuc protocol") !=
-      std::string::npos);
+  CHECK(fanuc.exit_code == 1);
+  CHECK(fanuc.err == "subfeed: error: --sim: --sim grbl speaks grbl, not the fanuc protocol\n");
 }
 
 TEST_CASE("send refuses bad command lines and bad files with the right exit code", "[pty]") {
@@ -72,7 +71,10 @@ TEST_CASE("send refuses bad command lines and bad files with the right exit code
   CHECK(
       run_process({bin, "send", job.string(), "--sim", "grbl", "--port", "/dev/null"}).exit_code ==
       1);
-  CHECK(run_process({bin, "send", job.string(), "--sim", "fanuc"}).exit_code == 1);
+  CHECK(run_process({bin, "send", job.string(), "--sim", "bogus"}).exit_code == 1);
+  CHECK(
+      run_process({bin, "send", job.string(), "--sim", "fanuc", "--protocol", "grbl"}).exit_code ==
+      1);
   const auto missing =
       run_process({bin, "send", (dir.path() / "nope.nc").string(), "--sim", "grbl"});
   CHECK(missing.exit_code == 2);
@@ -165,4 +167,49 @@ TEST_CASE("keys on the terminal reach the controller as realtime commands", "[pt
   INFO("sender: " << sent.err << " / sim: " << served.err);
   CHECK(served.err.find("3 overrides") != std::string::npos);
   CHECK(served.err.find("0 alarms, 1 resets, 1 feed holds") != std::string::npos);
+}
+
+TEST_CASE("send --sim fanuc drip-feeds a program", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", "G21 G90 G17\nG01 F600\nX1.0 Y2.0\nX3.0\n");
+  const auto r = run_process({bin, "send", job.string(), "--sim", "fanuc", "--sim-speed", "100"});
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.starts_with("done: 7 lines, 46 bytes"));
+  const auto bad = dir.write("bad.nc", "G21\nG01 X1.0 F600, (COMMA)\n");
+  const auto refused = run_process({bin, "send", bad.string(), "--sim", "fanuc"});
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.err ==
+        "subfeed: error: " + bad.string() +
+            ":2: ',' is not an ISO 840 tape character (the control would raise a TH alarm)\n");
+}
+
+TEST_CASE("send --protocol fanuc takes the machine's framing and O-number", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", "G21 G90\nG01 X1.0 F600\nX2.0\n");
+  BackgroundProcess control({sim_bin, "fanuc", "--speed", "100"});
+  const std::string port = control.first_line();
+  const auto r = run_process({bin, "send", job.string(), "--port", port, "--machine",
+                              source_dir + "/configs/fanuc-xyzac-trt.toml"});
+  CHECK(r.exit_code == 0);
+  std::this_thread::sleep_for(200ms);
+  control.signal(SIGTERM);
+  const auto served = control.wait();
+  CHECK(served.err.find("3 blocks executed, program 1234,") != std::string::npos);
+  CHECK(served.err.find("alarm none") != std::string::npos);
+}
+
+TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  std::string program = "G21 G90\nG01 F600\n";
+  for (int i = 0; i < 300; ++i) { // more than the control's 256-byte buffer
+    program += "X" + std::to_string(i % 5) + ".0\n";
+  }
+  const auto job = dir.write("job.nc", program);
+  BackgroundProcess control({sim_bin, "fanuc", "--stuck-xoff-at", "10"});
+  const std::string port = control.first_line();
+  const auto r = run_process(
+      {bin, "send", job.string(), "--protocol", "fanuc", "--port", port, "--xoff-timeout", "0.5"});
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("the control has held the tape (XOFF) for 500 ms; last block sent: line ") !=
+        std::string::npos);
 }

@@ -56,6 +56,7 @@ struct StreamProgress {
   double elapsed_s = 0.0;
   bool checking = false; // the check-mode pass of --check
   std::optional<StatusReport> status;
+  std::string link_state; // shown when there is no status report (DNC: "send", "XOFF")
 };
 
 struct LineError {

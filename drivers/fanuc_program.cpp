@@ -1,0 +1,78 @@
+#include "drivers/fanuc_program.hpp"
+
+#include <cctype>
+#include <cstdio>
+
+namespace subfeed::drivers {
+
+bool iso840_character(unsigned char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == ' ' || c == '+' || c == '-' ||
+         c == '.' || c == '/' || c == '(' || c == ')' || c == '#' || c == '*' || c == ';' ||
+         c == '=' || c == '%' || c == ':';
+}
+
+Expected<FanucProgram> FanucProgram::open(const std::filesystem::path& path) {
+  FanucProgram program(path.string());
+  program.in_.open(path, std::ios::binary);
+  if (!program.in_) {
+    return fail(ErrorCode::bad_input, "cannot open program file", {program.name_, 0, {}});
+  }
+  return program;
+}
+
+Expected<void> FanucProgram::rewind() {
+  in_.clear();
+  in_.seekg(0);
+  line_ = 0;
+  if (!in_) {
+    return fail(ErrorCode::bad_input, "cannot rewind program file", {name_, 0, {}});
+  }
+  return {};
+}
+
+Expected<std::optional<FanucBlock>> FanucProgram::next() {
+  std::string raw;
+  while (std::getline(in_, raw)) {
+    ++line_;
+    while (!raw.empty() && (raw.back() == '\r' || raw.back() == ' ' || raw.back() == '\t')) {
+      raw.pop_back();
+    }
+    if (raw.empty()) {
+      continue;
+    }
+    for (const char ch : raw) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (!iso840_character(c)) {
+        char shown[24];
+        std::snprintf(shown, sizeof shown, std::isprint(c) != 0 ? "'%c'" : "byte 0x%02X", c);
+        return fail(ErrorCode::bad_input,
+                    std::string(shown) +
+                        " is not an ISO 840 tape character (the control would raise a TH alarm)",
+                    {name_, static_cast<int>(line_), {}});
+      }
+    }
+    return FanucBlock{line_, std::move(raw)};
+  }
+  if (in_.bad()) {
+    return fail(ErrorCode::bad_input, "read error", {name_, static_cast<int>(line_), {}});
+  }
+  return std::optional<FanucBlock>();
+}
+
+Expected<FanucScan> FanucProgram::scan() {
+  SUBFEED_TRY(rewind());
+  FanucScan scan;
+  while (true) {
+    SUBFEED_TRY_ASSIGN(const auto block, next());
+    if (!block) {
+      break;
+    }
+    scan.framed = scan.framed || (scan.blocks == 0 && block->text == "%");
+    ++scan.blocks;
+    scan.bytes += static_cast<long>(block->text.size()) + 1;
+  }
+  SUBFEED_TRY(rewind());
+  return scan;
+}
+
+} // namespace subfeed::drivers

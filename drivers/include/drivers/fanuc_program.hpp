@@ -1,0 +1,49 @@
+#pragma once
+// A program for a Fanuc-style control, read one block at a time from disk. Blocks are sent
+// as written (comments kept, nothing upper-cased: the control reads tape characters) after
+// a check against ISO 840: a character the control would reject with a TH alarm stops the
+// job before the first byte is sent, naming file:line. A file that starts with '%' is taken
+// as framed already (leader, O-number, blocks, '%' trailer); any other gets the framing
+// added by the sender.
+
+#include "base/error.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+namespace subfeed::drivers {
+
+struct FanucBlock {
+  long line = 0; // 1-based line in the file
+  std::string text;
+};
+
+struct FanucScan {
+  long blocks = 0; // non-blank lines, '%' lines included
+  long bytes = 0;
+  bool framed = false; // the first block is '%'
+};
+
+class FanucProgram {
+public:
+  [[nodiscard]] static Expected<FanucProgram> open(const std::filesystem::path& path);
+
+  [[nodiscard]] Expected<FanucScan> scan();
+  [[nodiscard]] Expected<void> rewind();
+  [[nodiscard]] Expected<std::optional<FanucBlock>> next();
+  [[nodiscard]] const std::string& name() const { return name_; }
+
+private:
+  explicit FanucProgram(std::string name) : name_(std::move(name)) {}
+
+  std::string name_;
+  std::ifstream in_;
+  long line_ = 0;
+};
+
+// ISO 840 tape characters: capitals, digits, space and + - . / ( ) # * ; = % :
+[[nodiscard]] bool iso840_character(unsigned char c);
+
+} // namespace subfeed::drivers
