@@ -30,7 +30,7 @@ Expected<void> FanucProgram::rewind() {
   return {};
 }
 
-Expected<std::optional<FanucBlock>> FanucProgram::next() {
+Expected<bool> FanucProgram::next(FanucBlock& block) {
   std::string raw;
   while (std::getline(in_, raw)) {
     ++line_;
@@ -51,25 +51,28 @@ Expected<std::optional<FanucBlock>> FanucProgram::next() {
                     {name_, static_cast<int>(line_), {}});
       }
     }
-    return FanucBlock{line_, std::move(raw)};
+    block.line = line_;
+    block.text = std::move(raw);
+    return true;
   }
   if (in_.bad()) {
     return fail(ErrorCode::bad_input, "read error", {name_, static_cast<int>(line_), {}});
   }
-  return std::optional<FanucBlock>();
+  return false;
 }
 
 Expected<FanucScan> FanucProgram::scan() {
   SUBFEED_TRY(rewind());
   FanucScan scan;
+  FanucBlock block;
   while (true) {
-    SUBFEED_TRY_ASSIGN(const auto block, next());
-    if (!block) {
+    SUBFEED_TRY_ASSIGN(const bool more, next(block));
+    if (!more) {
       break;
     }
-    scan.framed = scan.framed || (scan.blocks == 0 && block->text == "%");
+    scan.framed = scan.framed || (scan.blocks == 0 && block.text == "%");
     ++scan.blocks;
-    scan.bytes += static_cast<long>(block->text.size()) + 1;
+    scan.bytes += static_cast<long>(block.text.size()) + 1;
   }
   SUBFEED_TRY(rewind());
   return scan;

@@ -54,18 +54,19 @@ public:
     StreamSummary summary;
     summary.lines = blocks_sent_;
     summary.bytes = bytes_sent_;
-    summary.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    // Until the last character has crossed the wire, not just left the program.
+    summary.seconds = std::chrono::duration<double>(std::max(Clock::now(), next_at_) - start_).count();
     return summary;
   }
 
 private:
-  // Blocks before --from only build up the modal state; '%' and the O line still go.
   Expected<void> send_program() {
     FanucModalState modal;
     bool restored = !options_.from_line;
+    FanucBlock block;
     while (true) {
-      SUBFEED_TRY_ASSIGN(const auto block, program_.next());
-      if (!block) {
+      SUBFEED_TRY_ASSIGN(const bool more, program_.next(block));
+      if (!more) {
         if (!restored) {
           return fail(ErrorCode::bad_input,
                       "the program ends before line " + std::to_string(*options_.from_line),
@@ -73,23 +74,27 @@ private:
         }
         return {};
       }
-      const bool framing =
-          block->text == "%" || block->text.front() == 'O' || block->text.front() == ':';
-      if (!restored && block->line >= *options_.from_line && !framing) {
-        SUBFEED_TRY_ASSIGN(
-            const auto blocks,
-            modal.restore_blocks({program_.name(), static_cast<int>(block->line), "--from"}));
-        for (const auto& b : blocks) {
-          SUBFEED_TRY(send_block(b, 0));
-        }
-        restored = true;
-      }
-      if (restored || framing) {
-        SUBFEED_TRY(send_block(block->text, block->line));
-      } else {
-        modal.apply(block->text);
-      }
+      SUBFEED_TRY(send_or_apply(block, modal, restored));
     }
+  }
+
+  // Blocks before --from only build up the modal state; '%' and the O line still go.
+  Expected<void> send_or_apply(const FanucBlock& block, FanucModalState& modal, bool& restored) {
+    const char first = block.text.front();
+    const bool framing = block.text == "%" || first == 'O' || first == ':';
+    if (!restored && block.line >= *options_.from_line && !framing) {
+      SUBFEED_TRY_ASSIGN(const auto blocks,
+                         modal.restore_blocks({program_.name(), static_cast<int>(block.line), "--from"}));
+      for (const auto& b : blocks) {
+        SUBFEED_TRY(send_block(b, 0));
+      }
+      restored = true;
+    }
+    if (restored || framing) {
+      return send_block(block.text, block.line);
+    }
+    modal.apply(block.text);
+    return {};
   }
 
   Expected<void> send_block(const std::string& text, long line) {
@@ -119,7 +124,9 @@ private:
       SUBFEED_TRY(write_now(std::string_view(bytes).substr(at, n)));
       at += n;
       bytes_sent_ += static_cast<long>(n);
-      next_at_ = std::max(next_at_, now) + character_time_ * static_cast<long>(n);
+      // A late wake-up may be made up for, by one character at most: the average rate stays
+      // the line's, and never more than about two characters are in flight.
+      next_at_ = std::max(next_at_, now - character_time_) + character_time_ * static_cast<long>(n);
     }
     return {};
   }

@@ -10,7 +10,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <string>
 
 namespace subfeed::drivers {
@@ -32,7 +31,8 @@ public:
 
   [[nodiscard]] Expected<FanucScan> scan();
   [[nodiscard]] Expected<void> rewind();
-  [[nodiscard]] Expected<std::optional<FanucBlock>> next();
+  // Fills `block` with the next non-blank line; false at the end of the file.
+  [[nodiscard]] Expected<bool> next(FanucBlock& block);
   [[nodiscard]] const std::string& name() const { return name_; }
 
 private:
