@@ -23,7 +23,8 @@ using namespace std::chrono_literals;
 class Quiet final : public drivers::StreamObserver {};
 
 std::filesystem::path write_program(long blocks) {
-  const auto path = std::filesystem::temp_directory_path() / ("subfeed-dnc-" + std::to_string(blocks) + ".nc");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("subfeed-dnc-" + std::to_string(blocks) + ".nc");
   std::ofstream out(path);
   out << "G21 G90 G17\nG01 F600\n";
   for (long i = 0; i < blocks; ++i) {
@@ -38,12 +39,15 @@ struct Run {
 };
 
 // `pacing` is the rate the sender times its characters by; the pty itself has no speed.
-Run send(sim::FanucSimOptions control, drivers::SerialOptions pacing, const std::filesystem::path& program) {
+Run send(sim::FanucSimOptions control, drivers::SerialOptions pacing,
+         const std::filesystem::path& program) {
   sim::FanucSim simulator(std::make_unique<sim::Pty>(sim::Pty::open().value()), control);
   simulator.start();
   drivers::SerialOptions port_framing = pacing;
   port_framing.baud = 115200; // any rate the port accepts: a pty ignores it
-  auto port = drivers::SerialPort::open(simulator.address(), drivers::dnc_port_options(port_framing)).value();
+  auto port =
+      drivers::SerialPort::open(simulator.address(), drivers::dnc_port_options(port_framing))
+          .value();
   auto file = drivers::FanucProgram::open(program).value();
   drivers::FanucStreamOptions options;
   options.serial = pacing;
@@ -78,21 +82,27 @@ int main() {
     control.parity = 'N';
     control.stop_bits = 1;
     control.motion.speed = 1e6;
-    const auto run = send(control, {19200, 8, drivers::SerialParity::none, 1, drivers::SerialFlow::xon_xoff}, program);
+    const auto run =
+        send(control, {19200, 8, drivers::SerialParity::none, 1, drivers::SerialFlow::xon_xoff},
+             program);
     bench::report({"DNC link use, 19200 8N1", run.summary.bytes / run.summary.seconds, "chars/s",
                    "wire capacity", 19200.0 / 10.0});
   }
   {
     const auto program = write_program(400);
     sim::FanucSimOptions control;
+    control.look_ahead_blocks = 2;
     control.buffer = 64;
     control.high_water = 40;
     control.low_water = 16;
     control.motion.speed = 20.0;
-    const auto run = send(control, {9600, 7, drivers::SerialParity::even, 2, drivers::SerialFlow::xon_xoff}, program);
-    bench::report({"worst chars after XOFF, 9600 7E2", static_cast<double>(run.stats.max_after_xoff), "chars",
-                   "control's tolerance", 10.0, false});
-    std::printf("  (%ld XOFF, %ld blocks, alarm: %s)\n", run.stats.xoff_sent, run.stats.executed_count,
+    const auto run = send(
+        control, {9600, 7, drivers::SerialParity::even, 2, drivers::SerialFlow::xon_xoff}, program);
+    bench::report({"worst chars after XOFF, 9600 7E2",
+                   static_cast<double>(run.stats.max_after_xoff), "chars", "control's tolerance",
+                   10.0, false});
+    std::printf("  (%ld XOFF, %ld blocks, alarm: %s)\n", run.stats.xoff_sent,
+                run.stats.executed_count,
                 run.stats.alarm.empty() ? "none" : run.stats.alarm.c_str());
   }
   {
@@ -108,7 +118,8 @@ int main() {
     control.data_bits = 8;
     control.parity = 'N';
     control.stop_bits = 1;
-    const drivers::SerialOptions fast{4000000, 8, drivers::SerialParity::none, 1, drivers::SerialFlow::xon_xoff};
+    const drivers::SerialOptions fast{4000000, 8, drivers::SerialParity::none, 1,
+                                      drivers::SerialFlow::xon_xoff};
     const auto small = write_program(100'000);
     (void)send(control, fast, small);
     const double baseline = peak_rss_mib();
@@ -118,7 +129,8 @@ int main() {
     std::filesystem::remove(big);
     bench::report({"peak RSS, " + std::to_string(blocks) + " blocks", peak_rss_mib(), "MiB",
                    "peak RSS, 100000 blocks", baseline, false});
-    std::printf("  (%ld blocks in %.1f s, delivered %ld, alarm: %s)\n", run.summary.lines, run.summary.seconds,
-                run.stats.executed_count, run.stats.alarm.empty() ? "none" : run.stats.alarm.c_str());
+    std::printf("  (%ld blocks in %.1f s, delivered %ld, alarm: %s)\n", run.summary.lines,
+                run.summary.seconds, run.stats.executed_count,
+                run.stats.alarm.empty() ? "none" : run.stats.alarm.c_str());
   }
 }

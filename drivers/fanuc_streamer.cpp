@@ -55,7 +55,8 @@ public:
     summary.lines = blocks_sent_;
     summary.bytes = bytes_sent_;
     // Until the last character has crossed the wire, not just left the program.
-    summary.seconds = std::chrono::duration<double>(std::max(Clock::now(), next_at_) - start_).count();
+    summary.seconds =
+        std::chrono::duration<double>(std::max(Clock::now(), next_at_) - start_).count();
     return summary;
   }
 
@@ -83,8 +84,9 @@ private:
     const char first = block.text.front();
     const bool framing = block.text == "%" || first == 'O' || first == ':';
     if (!restored && block.line >= *options_.from_line && !framing) {
-      SUBFEED_TRY_ASSIGN(const auto blocks,
-                         modal.restore_blocks({program_.name(), static_cast<int>(block.line), "--from"}));
+      SUBFEED_TRY_ASSIGN(
+          const auto blocks,
+          modal.restore_blocks({program_.name(), static_cast<int>(block.line), "--from"}));
       for (const auto& b : blocks) {
         SUBFEED_TRY(send_block(b, 0));
       }

@@ -54,7 +54,7 @@ class FanucSim::Control {
 public:
   Control(std::unique_ptr<ByteChannel> channel, FanucSimOptions options)
       : channel_(std::move(channel)), options_(std::move(options)), interpreter_(6),
-        planner_(32, options_.motion), rng_(options_.seed) {} // look-ahead, as real controls have
+        planner_(options_.look_ahead_blocks, options_.motion), rng_(options_.seed) {}
 
   [[nodiscard]] std::string address() const { return channel_->address(); }
 

@@ -108,6 +108,7 @@ TEST_CASE("DNC: a framed file is sent as it is", "[pty]") {
 TEST_CASE("DNC: on XOFF the sender stops within one character", "[pty]") {
   auto o = fast_control();
   o.motion.speed = 20.0; // slow enough that the buffer fills again and again
+  o.look_ahead_blocks = 2;
   o.buffer = 64;
   o.high_water = 40;
   o.low_water = 16;
@@ -190,6 +191,7 @@ TEST_CASE("DNC: an XOFF that never ends is reported with the last block sent", "
   SECTION("lost XON") {
     auto o = fast_control();
     o.motion.speed = 20.0;
+    o.look_ahead_blocks = 2;
     o.buffer = 64;
     o.high_water = 40;
     o.low_water = 16;

@@ -39,6 +39,7 @@ struct FanucSimOptions {
   bool request_tape = false; // send DC1 when a sender connects, asking for the tape
   bool eia_cr = false;       // blocks end with CR (EIA option) instead of LF
   MotionModel motion;
+  int look_ahead_blocks = 32; // blocks the control takes from the buffer ahead of motion
   // Drain jitter: before one block in `pause_one_in` (at random) the control stalls for up
   // to `max_block_pause` of real time, as when it is busy with something else.
   std::chrono::milliseconds max_block_pause{0};
