@@ -102,6 +102,7 @@ private:
   Expected<void> send_block(const std::string& text, long line) {
     SUBFEED_TRY(send_raw(text + eob_));
     ++blocks_sent_;
+    observer_.line_sent(line, static_cast<long>(text.size()) + 1);
     last_line_ = line != 0 ? line : last_line_;
     report();
     return {};
@@ -206,10 +207,14 @@ private:
 
   void on_control_byte(char c) {
     if (c == dc3 && !paused_) {
+      observer_.link_event("xoff", "");
       paused_ = true;
       paused_since_ = Clock::now();
       ++xoff_count_;
     } else if (c == dc1) {
+      if (paused_) {
+        observer_.link_event("xon", "");
+      }
       paused_ = false;
       requested_ = true;
     }

@@ -75,6 +75,7 @@ private:
     rx_used_ += entry.bytes;
     if (entry.file_line > 0) {
       bytes_sent_ += entry.bytes; // the program's bytes; the sender's own commands are not
+      observer_.line_sent(entry.file_line, entry.bytes);
     }
     return write_bytes(wire);
   }
@@ -160,6 +161,7 @@ private:
     }
     ++lines_acked_;
     last_acked_line_ = line.file_line;
+    observer_.line_answered(line.file_line, reply.kind == ReplyKind::ok ? 0 : reply.code);
     if (reply.kind == ReplyKind::error) {
       on_line_error(line.file_line, reply.code);
     }
@@ -190,6 +192,7 @@ private:
   }
 
   void on_alarm(int code) {
+    observer_.link_event("alarm", "ALARM:" + std::to_string(code));
     fail_with(ErrorCode::machine_fault,
               "controller ALARM:" + std::to_string(code) + " (" + std::string(alarm_meaning(code)) +
                   "); streaming stopped" + acked_note(),
@@ -204,6 +207,7 @@ private:
       banner_seen_ = true;
       return;
     }
+    observer_.link_event("reset", reply.text);
     fail_with(ErrorCode::machine_fault,
               "the controller reset itself (welcome message mid-job)" + acked_note(),
               last_acked_line_);
@@ -287,6 +291,7 @@ private:
       return {};
     }
     motion_stopped_ = true;
+    observer_.link_event("hold", "stopping the machine");
     if (auto held = realtime(rt::feed_hold); !held) {
       return held;
     }
@@ -302,6 +307,7 @@ private:
       if (status_ && (status_->state == "Idle" || status_->state == "Alarm" ||
                       (status_->state == "Hold" && status_->substate == 0))) {
         expect_reset();
+        observer_.link_event("reset", "soft reset after Hold:0");
         SUBFEED_TRY(realtime(rt::soft_reset));
         return wait_for_banner(reset_banner_wait);
       }

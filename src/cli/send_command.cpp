@@ -8,6 +8,7 @@
 
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/grbl_streamer.hpp"
+#include "drivers/journal.hpp"
 #include "drivers/port_list.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/tcp_transport.hpp"
@@ -44,6 +45,7 @@ struct SendOptions {
   double request_timeout_s = 60.0;
   double xoff_timeout_s = 30.0;
   long from_line = 0;
+  std::string journal; // default: the program's path + ".journal"
 };
 
 struct Link {
@@ -199,7 +201,7 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
 
 Expected<drivers::StreamSummary> send_dnc(SendOptions& o, const drivers::SerialOptions& serial,
                                           drivers::Transport& link, drivers::ControlInbox* inbox,
-                                          StreamReporter& reporter) {
+                                          drivers::StreamObserver& reporter) {
   if (!o.tcp.empty()) {
     return fail(ErrorCode::usage, "fanuc drip feed runs over a serial port, not --tcp",
                 {{}, 0, "--tcp"});
@@ -227,14 +229,19 @@ Expected<void> send(SendOptions o, Logger& log) {
       std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1000));
   SUBFEED_TRY_ASSIGN(const auto serial, apply_machine(o));
   SUBFEED_TRY_ASSIGN(auto source, drivers::GcodeSource::open(o.file, {}));
+  SUBFEED_TRY_ASSIGN(auto journal,
+                     drivers::Journal::open(o.journal.empty() ? o.file + ".journal" : o.journal));
   SUBFEED_TRY_ASSIGN(auto link, open_link(o, serial));
   SUBFEED_TRY_ASSIGN(auto inbox, drivers::ControlInbox::create());
   StreamReporter reporter(log, o.json);
+  drivers::JournaledObserver observer(reporter, journal);
+  journal.start(o.protocol, o.file, link.transport->name());
   const ControlThread control(*inbox, !o.json);
   const auto summary =
       o.protocol == "fanuc"
-          ? send_dnc(o, serial, *link.transport, inbox.get(), reporter)
-          : drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), reporter);
+          ? send_dnc(o, serial, *link.transport, inbox.get(), observer)
+          : drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), observer);
+  journal.end(summary);
   if (!summary) {
     reporter.failed(summary.error());
     return std::unexpected(summary.error());
@@ -285,6 +292,9 @@ void add_send_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
+  cmd->add_option("--journal", o->journal,
+                  "Append the job's journal to FILE (default: the program's path + .journal)")
+      ->type_name("FILE");
   cmd->add_option("--protocol", o->protocol, "grbl (character counting) or fanuc (DNC drip feed)")
       ->check(CLI::IsMember({"grbl", "fanuc"}));
   cmd->add_option("--data-bits", o->data_bits, "Serial data bits")

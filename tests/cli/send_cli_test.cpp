@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 #include <csignal>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 using subfeed::testing::BackgroundProcess;
@@ -17,6 +19,13 @@ namespace {
 const std::string bin = SUBFEED_BIN;
 const std::string sim_bin = SUBFEED_SIM_BIN;
 const std::string source_dir = SUBFEED_SOURCE_DIR;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 std::string moves(int count, int feed) {
   std::string p = "G21 G90 (setup)\nG1 F" + std::to_string(feed) + "\n";
@@ -104,6 +113,15 @@ TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exit
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in "
                    "block)") != std::string::npos);
+  const std::string journal = read_file(job.string() + ".journal");
+  CHECK(journal.find(" start protocol=grbl program=" + job.string() + " link=" + port + "\n") !=
+        std::string::npos);
+  CHECK(journal.find(" answered line=39 ok\n") != std::string::npos);
+  CHECK(journal.find(" answered line=40 error:20\n") != std::string::npos);
+  CHECK(journal.find(" event hold stopping the machine\n") != std::string::npos);
+  CHECK(journal.find(" event reset soft reset after Hold:0\n") != std::string::npos);
+  CHECK(journal.find(" end failed " + job.string() + ":40: controller error:20") !=
+        std::string::npos);
   sim.signal(SIGTERM);
   const auto served = sim.wait();
   CHECK(served.exit_code == 0);
@@ -212,4 +230,18 @@ TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[p
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("the control has held the tape (XOFF) for 500 ms; last block sent: line ") !=
         std::string::npos);
+  const std::string journal = read_file(job.string() + ".journal");
+  CHECK(journal.find(" start protocol=fanuc ") != std::string::npos);
+  CHECK(journal.find(" event xoff\n") != std::string::npos);
+  CHECK(journal.find(" end failed ") != std::string::npos);
+}
+
+TEST_CASE("a journal that cannot be written stops the job before it starts", "[pty]") {
+  const subfeed::testing::TempDir dir;
+  const auto job = dir.write("job.nc", moves(5, 3000));
+  const auto r = run_process(
+      {bin, "send", job.string(), "--sim", "grbl", "--journal", "/nonexistent/dir/j.journal"});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err == "subfeed: error: /nonexistent/dir/j.journal: --journal: cannot open journal: No "
+                 "such file or directory\n");
 }

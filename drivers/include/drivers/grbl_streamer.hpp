@@ -75,6 +75,11 @@ public:
   virtual void message(std::string_view /*line*/) {} // [MSG:], [GC:], settings ...
   virtual void line_error(const LineError& /*error*/) {}
   virtual void phase(std::string_view /*name*/) {} // "check", "stream", "finishing"
+  // For the journal: a program line (GRBL) or block (DNC) went out, and its answer.
+  virtual void line_sent(long /*line*/, long /*bytes*/) {}
+  virtual void line_answered(long /*line*/, int /*error_code*/) {}
+  // Things on the link a resume must know of: "alarm", "reset", "xoff", "xon", "hold".
+  virtual void link_event(std::string_view /*name*/, std::string_view /*detail*/) {}
 };
 
 struct StreamSummary {
