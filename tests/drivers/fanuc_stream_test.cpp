@@ -279,3 +279,28 @@ TEST_CASE("DNC soak: 100,000 blocks with random drain, no overrun, exact deliver
   CHECK(stats.xoff_sent > 10);
   CHECK(stats.executed == blocks_of(program));
 }
+
+TEST_CASE("DNC: a port that accepts nothing (CTS held low) is reported", "[pty]") {
+  // To the sender a dropped CTS is a port that takes no more bytes; a pty whose far side
+  // stops reading does the same once its buffer is full.
+  auto pty = subfeed::sim::Pty::open().value();
+  const SerialOptions fast{460800, 8, SerialParity::none, 1, subfeed::drivers::SerialFlow::rts_cts};
+  auto port =
+      subfeed::drivers::SerialPort::open(pty.slave_path(), subfeed::drivers::dnc_port_options(fast))
+          .value();
+  subfeed::testing::TempDir dir;
+  std::string program;
+  for (int i = 0; i < 20000; ++i) {
+    program += "X" + std::to_string(i % 100) + ".5 Y1.0\n";
+  }
+  auto file = subfeed::drivers::FanucProgram::open(dir.write("p.nc", program)).value();
+  FanucStreamOptions options;
+  options.serial = fast;
+  subfeed::testing::RecordingObserver observer;
+  const auto result = subfeed::drivers::stream_fanuc(port, file, options, nullptr, observer);
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::machine_fault);
+  CHECK(result.error().message.starts_with(
+      "the port took nothing for 2000 ms (hardware handshake: CTS held low?)"));
+  CHECK(result.error().message.find("last block sent: line ") != std::string::npos);
+}
