@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 namespace subfeed::bench {
@@ -38,6 +39,20 @@ inline void report(const Figure& f) {
               f.unit.c_str(), f.baseline != 0.0 ? f.value / f.baseline : 0.0,
               f.higher_is_better ? "higher" : "lower");
   std::fflush(stdout);
+}
+
+// Peak resident memory of this process so far (VmHWM), MiB.
+inline double peak_rss_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      double kib = 0.0;
+      status >> kib;
+      return kib / 1024.0;
+    }
+  }
+  return 0.0;
 }
 
 // Keeps the optimiser from deleting work whose result is otherwise unused.

@@ -58,19 +58,6 @@ Run send(sim::FanucSimOptions control, drivers::SerialOptions pacing,
   return {summary, simulator.stats()};
 }
 
-double peak_rss_mib() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      double kib = 0.0;
-      status >> kib;
-      return kib / 1024.0;
-    }
-  }
-  return 0.0;
-}
-
 } // namespace
 
 int main() {
@@ -122,12 +109,12 @@ int main() {
                                       drivers::SerialFlow::xon_xoff};
     const auto small = write_program(100'000);
     (void)send(control, fast, small);
-    const double baseline = peak_rss_mib();
+    const double baseline = bench::peak_rss_mib();
     std::filesystem::remove(small);
     const auto big = write_program(blocks);
     const auto run = send(control, fast, big);
     std::filesystem::remove(big);
-    bench::report({"peak RSS, " + std::to_string(blocks) + " blocks", peak_rss_mib(), "MiB",
+    bench::report({"peak RSS, " + std::to_string(blocks) + " blocks", bench::peak_rss_mib(), "MiB",
                    "peak RSS, 100000 blocks", baseline, false});
     std::printf("  (%ld blocks in %.1f s, delivered %ld, alarm: %s)\n", run.summary.lines,
                 run.summary.seconds, run.stats.executed_count,

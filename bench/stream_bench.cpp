@@ -181,30 +181,17 @@ void realtime_latency(const std::vector<double>& one_way) {
                  "pty one-way byte, p99", percentile(one_way, 0.99), false});
 }
 
-double peak_rss_mib() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      double kib = 0.0;
-      status >> kib;
-      return kib / 1024.0;
-    }
-  }
-  return 0.0;
-}
-
 void memory() {
   const char* env = std::getenv("SUBFEED_BENCH_LINES");
   const long lines = env != nullptr ? std::atol(env) : 10'000'000L;
   const auto small = write_program(100'000, 5);
   (void)stream(machine(0, 1e9), {}, small).value();
-  const double baseline = peak_rss_mib();
+  const double baseline = bench::peak_rss_mib();
   std::filesystem::remove(small);
   const auto big = write_program(lines, 6);
   const auto run = stream(machine(0, 1e9), {}, big).value();
   std::filesystem::remove(big);
-  bench::report({"peak RSS, " + std::to_string(lines) + " lines", peak_rss_mib(), "MiB",
+  bench::report({"peak RSS, " + std::to_string(lines) + " lines", bench::peak_rss_mib(), "MiB",
                  "peak RSS, 100000 lines", baseline, false});
   std::printf("  (%ld lines in %.1f s, %.0f lines/s, no overrun: %s)\n", run.summary.lines,
               run.summary.seconds, run.summary.lines / run.summary.seconds,

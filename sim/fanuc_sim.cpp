@@ -1,5 +1,7 @@
 #include "sim/fanuc_sim.hpp"
 
+#include "sim/delivery_hash.hpp"
+
 #include "sim/gcode_interpreter.hpp"
 #include "sim/pty.hpp"
 
@@ -39,13 +41,6 @@ std::string interpretable(const std::string& block) {
     }
   }
   return out;
-}
-
-std::uint64_t fnv1a(std::uint64_t hash, std::string_view text) {
-  for (const char c : text) {
-    hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
-  }
-  return (hash ^ static_cast<unsigned char>('\n')) * 1099511628211ULL;
 }
 
 } // namespace
@@ -262,7 +257,7 @@ private:
       planner_.push(result.move);
     }
     ++stats_.executed_count;
-    stats_.executed_hash = fnv1a(stats_.executed_hash, block);
+    stats_.executed_hash = delivery_hash(stats_.executed_hash, block);
     if (options_.record_executed) {
       stats_.executed.push_back(block);
     }
@@ -304,14 +299,11 @@ FanucSim::~FanucSim() {
 }
 
 void FanucSim::start() {
-  thread_ = std::jthread([this](const std::stop_token& stop) { control_->run(stop); });
+  thread_.start([this](const std::stop_token& stop) { control_->run(stop); });
 }
 
 void FanucSim::stop() {
-  if (thread_.joinable()) {
-    thread_.request_stop();
-    thread_.join();
-  }
+  thread_.stop();
 }
 
 void FanucSim::run(const std::stop_token& stop) {

@@ -1,5 +1,7 @@
 #include "sim/grbl_sim.hpp"
 
+#include "sim/delivery_hash.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -43,13 +45,6 @@ std::string strip_line(std::string_view raw) {
     }
   }
   return out;
-}
-
-std::uint64_t fnv1a(std::uint64_t hash, std::string_view text) {
-  for (const char c : text) {
-    hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
-  }
-  return (hash ^ static_cast<unsigned char>('\n')) * 1099511628211ULL;
 }
 
 } // namespace
@@ -431,7 +426,7 @@ private:
 
   void record_executed(const std::string& line) {
     ++stats_.executed_count;
-    stats_.executed_hash = fnv1a(stats_.executed_hash, line);
+    stats_.executed_hash = delivery_hash(stats_.executed_hash, line);
     if (options_.record_executed) {
       stats_.executed.push_back(line);
     }
@@ -677,14 +672,11 @@ GrblSim::~GrblSim() {
 }
 
 void GrblSim::start() {
-  thread_ = std::jthread([this](const std::stop_token& stop) { machine_->run(stop); });
+  thread_.start([this](const std::stop_token& stop) { machine_->run(stop); });
 }
 
 void GrblSim::stop() {
-  if (thread_.joinable()) {
-    thread_.request_stop();
-    thread_.join();
-  }
+  thread_.stop();
 }
 
 void GrblSim::run(const std::stop_token& stop) {

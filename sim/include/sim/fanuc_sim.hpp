@@ -8,7 +8,9 @@
 // executed blocks. It shares no code with the sender.
 
 #include "sim/byte_channel.hpp"
+#include "sim/delivery_hash.hpp"
 #include "sim/motion_planner.hpp"
+#include "sim/serve_thread.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -52,7 +54,7 @@ struct FanucSimOptions {
 struct FanucSimStats {
   std::vector<std::string> executed; // blocks run, as received (without the EOB)
   long executed_count = 0;
-  std::uint64_t executed_hash = 1469598103934665603ULL; // FNV-1a over blocks and '\n'
+  std::uint64_t executed_hash = delivery_hash_seed; // FNV-1a over blocks and '\n'
   long blocks_received = 0;
   long xoff_sent = 0;
   long xon_sent = 0;
@@ -82,7 +84,7 @@ private:
   class Control;
   std::unique_ptr<Control> control_;
   std::string address_;
-  std::jthread thread_;
+  ServeThread thread_; // last: stops before the machine it runs goes
 };
 
 } // namespace subfeed::sim

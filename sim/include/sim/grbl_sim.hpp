@@ -8,7 +8,9 @@
 // speed. Faults can be injected. Everything the sender got right or wrong is in stats().
 
 #include "sim/byte_channel.hpp"
+#include "sim/delivery_hash.hpp"
 #include "sim/motion_planner.hpp"
+#include "sim/serve_thread.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -61,12 +63,12 @@ struct GrblSimOptions {
 struct GrblSimStats {
   std::vector<std::string> executed; // accepted program lines, as received (stripped), in order
   long executed_count = 0;
-  std::uint64_t executed_hash = 1469598103934665603ULL; // FNV-1a over executed lines and '\n'
-  long checked_lines = 0;                               // program lines answered in check mode ($C)
-  long program_lines = 0;                               // program lines received, accepted or not
-  long overrun_bytes = 0;     // bytes dropped because the RX buffer was full
-  long eeprom_violations = 0; // EEPROM writes while more bytes were waiting
-  int max_rx_fill = 0;        // most bytes ever waiting in the RX buffer
+  std::uint64_t executed_hash = delivery_hash_seed; // FNV-1a over executed lines and '\n'
+  long checked_lines = 0;                           // program lines answered in check mode ($C)
+  long program_lines = 0;                           // program lines received, accepted or not
+  long overrun_bytes = 0;                           // bytes dropped because the RX buffer was full
+  long eeprom_violations = 0;                       // EEPROM writes while more bytes were waiting
+  int max_rx_fill = 0;                              // most bytes ever waiting in the RX buffer
   long errors_sent = 0;
   long alarms_sent = 0;
   long resets = 0;                        // soft resets received (0x18)
@@ -103,7 +105,7 @@ private:
   class Machine;
   std::unique_ptr<Machine> machine_;
   std::string address_;
-  std::jthread thread_;
+  ServeThread thread_; // last: stops before the machine it runs goes
 };
 
 // The GRBL settings the simulator reports and lets a sender change with $n=v.
