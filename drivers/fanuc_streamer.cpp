@@ -127,9 +127,11 @@ private:
       SUBFEED_TRY(write_now(std::string_view(bytes).substr(at, n)));
       at += n;
       bytes_sent_ += static_cast<long>(n);
-      // A late wake-up may be made up for, by one character at most: the average rate stays
-      // the line's, and never more than about two characters are in flight.
-      next_at_ = std::max(next_at_, now - character_time_) + character_time_ * static_cast<long>(n);
+      // A late wake-up is made up for by half a character at most: the average rate stays
+      // close to the line's, and no two characters leave closer than half a character
+      // apart, so a DC3 is seen before a second one follows.
+      next_at_ =
+          std::max(next_at_, now - character_time_ / 2) + character_time_ * static_cast<long>(n);
     }
     return {};
   }

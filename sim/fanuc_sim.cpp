@@ -83,7 +83,9 @@ private:
       const auto now = Clock::now();
       tokens_ +=
           std::chrono::duration<double>(now - last_pump_).count() * options_.baud / bits_per_char();
-      tokens_ = std::min(tokens_, 8.0);
+      // A stalled control thread catches up with what the wire delivered meanwhile (a UART
+      // does not lag); an idle wire banks nothing (reset below when the input drains).
+      tokens_ = std::min(tokens_, 4096.0);
       last_pump_ = now;
       allowed = static_cast<std::size_t>(tokens_);
     }
@@ -110,6 +112,7 @@ private:
     } else {
       tokens_ -= static_cast<double>(*n);
     }
+    ++read_batch_;
     for (std::size_t i = 0; i < *n; ++i) {
       on_byte(static_cast<unsigned char>(buffer[i]));
     }
@@ -153,10 +156,12 @@ private:
     if (!stats_.alarm.empty()) {
       return;
     }
-    if (xoff_active_ && ++after_xoff_ > options_.overrun_tolerance) {
+    // Characters read together with the one that filled the buffer were on the wire before
+    // the DC3 could leave; only those read after it count against the sender.
+    if (xoff_active_ && read_batch_ > xoff_batch_ && ++after_xoff_ > options_.overrun_tolerance) {
       raise("087 overrun: " + std::to_string(after_xoff_) + " characters after DC3");
     }
-    stats_.max_after_xoff = std::max(stats_.max_after_xoff, xoff_active_ ? after_xoff_ : 0);
+    stats_.max_after_xoff = std::max(stats_.max_after_xoff, after_xoff_);
     if (!iso840(c)) {
       std::string shown = std::isprint(c) != 0 ? std::string(1, static_cast<char>(c))
                                                : "0x" + std::to_string(static_cast<int>(c));
@@ -177,6 +182,7 @@ private:
   void send_xoff() {
     out_ += dc3;
     xoff_active_ = true;
+    xoff_batch_ = read_batch_;
     after_xoff_ = 0;
     ++stats_.xoff_sent;
   }
@@ -283,6 +289,8 @@ private:
   Clock::time_point stalled_until_{};
   double tokens_ = 0.0;
   int after_xoff_ = 0;
+  long read_batch_ = 0; // reads from the wire so far
+  long xoff_batch_ = 0; // the read during which the last DC3 was queued
   bool connected_ = false;
   bool framing_checked_ = false;
   bool xoff_active_ = false;
