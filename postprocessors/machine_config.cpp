@@ -12,7 +12,8 @@
 namespace subfeed::post {
 
 std::string_view to_string(KinematicsType type) {
-  return type == KinematicsType::xyz ? "xyz" : "xyzac-trt";
+  constexpr std::array<std::string_view, 4> names{"xyz", "xyzac-trt", "xyzbc-trt", "xyzac-head"};
+  return names[static_cast<std::size_t>(type)];
 }
 std::string_view to_string(Protocol protocol) {
   return protocol == Protocol::grbl ? "grbl" : "fanuc";
@@ -100,7 +101,9 @@ Expected<AxisLimits> read_axis(TomlTableReader& axis, bool rotary) {
 
 Expected<AxisSet> read_axes(TomlTableReader& top, KinematicsType type) {
   SUBFEED_TRY_ASSIGN(auto axes_table, top.table("axes"));
-  const std::string_view letters = type == KinematicsType::xyz ? "xyz" : "xyzac";
+  const std::string_view letters = type == KinematicsType::xyz         ? "xyz"
+                                   : type == KinematicsType::xyzbc_trt ? "xyzbc"
+                                                                       : "xyzac";
   AxisSet axes;
   for (const char letter : letters) {
     const std::string key(1, letter);
@@ -121,9 +124,11 @@ Expected<int> direction(TomlTableReader& table, std::string_view key) {
   return static_cast<int>(value);
 }
 
-Expected<TableTableGeometry> read_table_table(TomlTableReader& top) {
-  SUBFEED_TRY_ASSIGN(auto k, top.table("kinematics"));
-  TableTableGeometry g;
+Expected<double> length(TomlTableReader& k, std::string_view key) {
+  return number_in(k, key, -max_linear_travel, max_linear_travel, "mm");
+}
+
+Expected<void> read_pivot(TomlTableReader& k, RotaryGeometry& g) {
   SUBFEED_TRY_ASSIGN(const auto pivot, k.numbers("pivot", 3));
   for (std::size_t i = 0; i < 3; ++i) {
     if (std::abs(pivot[i]) > max_linear_travel) {
@@ -131,17 +136,60 @@ Expected<TableTableGeometry> read_table_table(TomlTableReader& top) {
     }
     g.pivot[i] = pivot[i];
   }
-  SUBFEED_TRY_ASSIGN(g.y_offset,
-                     number_in(k, "y_offset", -max_linear_travel, max_linear_travel, "mm"));
-  SUBFEED_TRY_ASSIGN(g.z_offset,
-                     number_in(k, "z_offset", -max_linear_travel, max_linear_travel, "mm"));
+  return {};
+}
+
+// Keys per type, as LinuxCNC's kinematics modules name them.
+Expected<RotaryGeometry> read_rotary(TomlTableReader& top, KinematicsType type) {
+  SUBFEED_TRY_ASSIGN(auto k, top.table("kinematics"));
+  RotaryGeometry g;
+  if (type == KinematicsType::xyzac_head) {
+    SUBFEED_TRY_ASSIGN(g.pivot_length, number_in(k, "pivot_length", 0.0, 10000.0, "mm"));
+  } else {
+    SUBFEED_TRY(read_pivot(k, g));
+    if (type == KinematicsType::xyzbc_trt) {
+      SUBFEED_TRY_ASSIGN(g.x_offset, length(k, "x_offset"));
+    } else {
+      SUBFEED_TRY_ASSIGN(g.y_offset, length(k, "y_offset"));
+    }
+    SUBFEED_TRY_ASSIGN(g.z_offset, length(k, "z_offset"));
+  }
   if (k.has("tool_length")) {
     SUBFEED_TRY_ASSIGN(g.tool_length, number_in(k, "tool_length", 0.0, 10000.0, "mm"));
   }
-  SUBFEED_TRY_ASSIGN(g.a_direction, direction(k, "a_direction"));
+  const auto tilt_key = type == KinematicsType::xyzbc_trt ? "b_direction" : "a_direction";
+  SUBFEED_TRY_ASSIGN(g.tilt_direction, direction(k, tilt_key));
   SUBFEED_TRY_ASSIGN(g.c_direction, direction(k, "c_direction"));
   SUBFEED_TRY(k.finish());
   return g;
+}
+
+Expected<PostSettings> read_post(TomlTableReader& top, const AxisSet& axes) {
+  PostSettings s;
+  if (!top.has("post")) {
+    return s;
+  }
+  SUBFEED_TRY_ASSIGN(auto p, top.table("post"));
+  if (p.has("singularity_cone")) {
+    SUBFEED_TRY_ASSIGN(s.singularity_cone, number_in(p, "singularity_cone", 0.0, 10.0, "deg"));
+  }
+  if (p.has("retract")) {
+    SUBFEED_TRY_ASSIGN(s.retract, number_in(p, "retract", 0.0, 1000.0, "mm"));
+  }
+  if (p.has("safe_z")) {
+    SUBFEED_TRY_ASSIGN(s.safe_z, length(p, "safe_z"));
+    const auto& z = *axes[2];
+    if (*s.safe_z < z.min || *s.safe_z > z.max) {
+      return p.invalid("safe_z", "must lie within the Z travel limits");
+    }
+  }
+  if (p.has("preferred_tilt")) {
+    SUBFEED_TRY_ASSIGN(const std::string tilt,
+                       p.choice("preferred_tilt", {"positive", "negative", "either"}));
+    s.preferred_tilt = tilt == "positive" ? 1 : tilt == "negative" ? -1 : 0;
+  }
+  SUBFEED_TRY(p.finish());
+  return s;
 }
 
 Expected<SerialSettings> read_serial(TomlTableReader& controller, Protocol protocol) {
@@ -228,14 +276,16 @@ Expected<MachineConfig> read_config(const toml::table& root, const std::string& 
     return machine.invalid("name", "must not be empty");
   }
   SUBFEED_TRY_ASSIGN(config.kinematics,
-                     from_names<KinematicsType>(machine, "kinematics", {"xyz", "xyzac-trt"}));
+                     from_names<KinematicsType>(machine, "kinematics",
+                                                {"xyz", "xyzac-trt", "xyzbc-trt", "xyzac-head"}));
   SUBFEED_TRY(machine.finish());
   SUBFEED_TRY_ASSIGN(config.axes, read_axes(top, config.kinematics));
-  if (config.kinematics == KinematicsType::xyzac_trt) {
-    SUBFEED_TRY_ASSIGN(config.table_table, read_table_table(top));
+  if (config.kinematics != KinematicsType::xyz) {
+    SUBFEED_TRY_ASSIGN(config.rotary, read_rotary(top, config.kinematics));
   } else if (top.has("kinematics")) {
     return top.invalid("kinematics", "an xyz machine has no rotary geometry");
   }
+  SUBFEED_TRY_ASSIGN(config.post, read_post(top, config.axes));
   SUBFEED_TRY_ASSIGN(config.controller, read_controller(top));
   SUBFEED_TRY(top.finish());
   return config;

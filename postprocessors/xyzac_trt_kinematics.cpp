@@ -1,32 +1,22 @@
 #include "xyzac_trt_kinematics.hpp"
 
+#include "angles.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace subfeed::post {
 
 namespace {
 
-constexpr double deg = std::numbers::pi / 180.0;
+constexpr double deg = radians_per_degree;
 // Below this sin(A) the tool is along the C axis and C is free (1e-12: round-off only).
 constexpr double pole = 1e-12;
 
-// Into (-180, 180].
-double wrap_deg(double angle) {
-  double a = std::fmod(angle, 360.0);
-  if (a <= -180.0) {
-    a += 360.0;
-  } else if (a > 180.0) {
-    a -= 360.0;
-  }
-  return a;
-}
-
 } // namespace
 
-XyzacTrtKinematics::XyzacTrtKinematics(const TableTableGeometry& geometry)
-    : g_(geometry), p_(geometry.a_direction), q_(geometry.c_direction),
+XyzacTrtKinematics::XyzacTrtKinematics(const RotaryGeometry& geometry)
+    : g_(geometry), p_(geometry.tilt_direction), q_(geometry.c_direction),
       dz_(geometry.z_offset + geometry.tool_length) {}
 
 JointPosition XyzacTrtKinematics::joints_for(const ToolPose& pose, double a_deg,
@@ -57,7 +47,7 @@ std::vector<JointPosition> XyzacTrtKinematics::inverse(const ToolPose& pose,
     return {joints_for(pose, a, near[5])}; // along the C axis: C keeps its value
   }
   const double c = std::atan2(p_ * q_ * k[0], -p_ * k[1]) / deg;
-  return {joints_for(pose, a, c), joints_for(pose, -a, wrap_deg(c + 180.0))};
+  return {joints_for(pose, a, c), joints_for(pose, -a, wrap_degrees(c + 180.0))};
 }
 
 ToolPose XyzacTrtKinematics::forward(const JointPosition& j) const {

@@ -20,7 +20,7 @@ namespace subfeed::post {
 
 class XyzacTrtKinematics final : public Kinematics {
 public:
-  explicit XyzacTrtKinematics(const TableTableGeometry& geometry);
+  explicit XyzacTrtKinematics(const RotaryGeometry& geometry);
 
   [[nodiscard]] std::vector<JointPosition> inverse(const ToolPose& pose,
                                                    const JointPosition& near) const override;
@@ -29,7 +29,7 @@ public:
 private:
   [[nodiscard]] JointPosition joints_for(const ToolPose& pose, double a_deg, double c_deg) const;
 
-  TableTableGeometry g_;
+  RotaryGeometry g_;
   double p_;  // A direction
   double q_;  // C direction
   double dz_; // Dz plus tool length

@@ -21,5 +21,7 @@ void add_inspect_command(CLI::App& app, Action& chosen);
 void add_config_command(CLI::App& app, Action& chosen);
 void add_send_command(CLI::App& app, Action& chosen);
 void add_ports_command(CLI::App& app, Action& chosen);
+void add_post_command(CLI::App& app, Action& chosen);
+void add_check_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

@@ -32,13 +32,21 @@ void describe(const post::MachineConfig& m, Logger& log) {
       log.info(describe_axis(i, *m.axes[i]));
     }
   }
-  if (m.table_table) {
-    const auto& g = *m.table_table;
-    log.info(
-        fmt::format("  pivot ({}, {}, {}) mm, y offset {} mm, z offset {} mm, tool length {} mm, "
-                    "A direction {:+d}, C direction {:+d}",
-                    g.pivot[0], g.pivot[1], g.pivot[2], g.y_offset, g.z_offset, g.tool_length,
-                    g.a_direction, g.c_direction));
+  if (m.rotary) {
+    const auto& g = *m.rotary;
+    const char tilt = post::axis_letters[post::tilt_axis(m.kinematics)];
+    if (m.kinematics == post::KinematicsType::xyzac_head) {
+      log.info(fmt::format("  pivot length {} mm, tool length {} mm", g.pivot_length,
+                           g.tool_length));
+    } else {
+      log.info(fmt::format("  pivot ({}, {}, {}) mm, offsets x {} y {} z {} mm, tool length {} mm",
+                           g.pivot[0], g.pivot[1], g.pivot[2], g.x_offset, g.y_offset, g.z_offset,
+                           g.tool_length));
+    }
+    log.info(fmt::format("  {} direction {:+d}, C direction {:+d}; singularity cone {} deg, "
+                         "retract {} mm",
+                         tilt, g.tilt_direction, g.c_direction, m.post.singularity_cone,
+                         m.post.retract));
   }
   const auto& s = c.serial;
   log.info(

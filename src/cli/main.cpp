@@ -40,6 +40,8 @@ int run(int argc, char** argv) {
   subfeed::cli::add_config_command(app, chosen);
   subfeed::cli::add_send_command(app, chosen);
   subfeed::cli::add_ports_command(app, chosen);
+  subfeed::cli::add_post_command(app, chosen);
+  subfeed::cli::add_check_command(app, chosen);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

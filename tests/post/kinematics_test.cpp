@@ -16,7 +16,7 @@ MachineConfig trt(int p, int q, std::array<double, 3> pivot = {10, -20, -150}, d
                   double dz = 120.0, double tool = 0.0) {
   MachineConfig m;
   m.kinematics = KinematicsType::xyzac_trt;
-  m.table_table = TableTableGeometry{pivot, dy, dz, tool, p, q};
+  m.rotary = RotaryGeometry{.pivot = pivot, .y_offset = dy, .z_offset = dz, .tool_length = tool, .tilt_direction = p, .c_direction = q};
   return m;
 }
 
@@ -35,7 +35,7 @@ double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) 
 
 // PROTOCOLS.md's xyzac-trt "joints from work position", typed in as written (one sign s).
 std::array<double, 3> protocols_joints(const ToolPose& pose, double a_deg, double c_deg, double s,
-                                       const TableTableGeometry& g) {
+                                       const RotaryGeometry& g) {
   const double cA = std::cos(a_deg * deg), sA = std::sin(a_deg * deg);
   const double cC = std::cos(c_deg * deg), sC = std::sin(c_deg * deg);
   const double Qx = pose.tip[0] - g.pivot[0], Qy = pose.tip[1] - g.pivot[1],
@@ -58,7 +58,7 @@ TEST_CASE("joints agree with LinuxCNC's xyzac-trt formulas for both of its conve
     for (int i = 0; i < 2000; ++i) {
       const ToolPose pose = random_pose(rng);
       for (const auto& j : kinematics->inverse(pose, {})) {
-        const auto expected = protocols_joints(pose, j[3], j[5], s, *machine.table_table);
+        const auto expected = protocols_joints(pose, j[3], j[5], s, *machine.rotary);
         worst = std::max(worst, distance({j[0], j[1], j[2]}, expected));
       }
     }
@@ -72,7 +72,7 @@ TEST_CASE("the tool axis lands on the fixed spindle and the tip where the table 
   for (const int p : {1, -1}) {
     for (const int q : {1, -1}) {
       const auto machine = trt(p, q);
-      const auto& g = *machine.table_table;
+      const auto& g = *machine.rotary;
       const auto kinematics = make_kinematics(machine);
       for (int i = 0; i < 500; ++i) {
         const ToolPose pose = random_pose(rng);

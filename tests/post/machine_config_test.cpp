@@ -62,10 +62,10 @@ TEST_CASE("a complete config is read with its defaults") {
   REQUIRE(config);
   CHECK(config->name == "test trunnion");
   CHECK(config->kinematics == KinematicsType::xyzac_trt);
-  REQUIRE(config->table_table);
-  CHECK(config->table_table->pivot == std::array<double, 3>{1, 2, 3});
-  CHECK(config->table_table->a_direction == -1);
-  CHECK(config->table_table->tool_length == 0.0);
+  REQUIRE(config->rotary);
+  CHECK(config->rotary->pivot == std::array<double, 3>{1, 2, 3});
+  CHECK(config->rotary->tilt_direction == -1);
+  CHECK(config->rotary->tool_length == 0.0);
   REQUIRE(config->axes[3]);
   CHECK(config->axes[3]->min == -100.0);
   CHECK(config->axes[3]->max_feed == 3600.0); // integers are accepted for numbers

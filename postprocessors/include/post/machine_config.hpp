@@ -16,9 +16,16 @@
 namespace subfeed::post {
 
 enum class KinematicsType {
-  xyz,       // three linear axes
-  xyzac_trt, // table tilts A about X and carries C about Z (LinuxCNC xyzac-trt-kins)
+  xyz,        // three linear axes
+  xyzac_trt,  // table tilts A about X and carries C about Z (LinuxCNC xyzac-trt-kins)
+  xyzbc_trt,  // table tilts B about Y and carries C about Z (LinuxCNC xyzbc-trt-kins)
+  xyzac_head, // spindle head turns C about Z and carries the A fork that tilts the tool
 };
+
+// The tilting rotary axis of a five-axis type: 3 (A) or 4 (B); 0 for xyz.
+[[nodiscard]] constexpr std::size_t tilt_axis(KinematicsType type) {
+  return type == KinematicsType::xyz ? 0 : type == KinematicsType::xyzbc_trt ? 4 : 3;
+}
 
 enum class Protocol { grbl, fanuc };
 enum class Dialect { grbl, fanuc, linuxcnc };
@@ -42,16 +49,26 @@ struct AxisLimits {
 
 using AxisSet = std::array<std::optional<AxisLimits>, axis_letters.size()>;
 
-// LinuxCNC xyzac-trt parameters (PROTOCOLS.md). direction +1: ISO 841, a positive angle
-// moves the tool relative to the work by the right-hand rule (the table turns the other
-// way); -1: the opposite, LinuxCNC's default.
-struct TableTableGeometry {
-  std::array<double, 3> pivot{}; // rotation point (xr, yr, zr), mm, machine frame
-  double y_offset = 0.0;         // Dy, mm
-  double z_offset = 0.0;         // Dz, mm
-  double tool_length = 0.0;      // mm, added to Dz
-  int a_direction = 1;
+// Geometry of the five-axis types, named as LinuxCNC names it (PROTOCOLS.md). A direction
+// of +1 is ISO 841: a positive angle moves the tool relative to the work by the right-hand
+// rule (a table therefore turns the other way); -1 is the opposite, LinuxCNC's default.
+struct RotaryGeometry {
+  std::array<double, 3> pivot{}; // table types: rotation point (xr, yr, zr), mm, machine frame
+  double x_offset = 0.0;         // Dx between the B and C axes (xyzbc-trt), mm
+  double y_offset = 0.0;         // Dy between the A and C axes (xyzac-trt), mm
+  double z_offset = 0.0;         // Dz between the tilt axis and the table surface, mm
+  double pivot_length = 0.0;     // head: from the tool-holder face to the tilt axis, mm
+  double tool_length = 0.0;      // mm: added to Dz (tables) or to the pivot length (head)
+  int tilt_direction = 1;        // of A (or B for xyzbc-trt)
   int c_direction = 1;
+};
+
+// How the post moves the machine where the CL data says nothing.
+struct PostSettings {
+  double singularity_cone = 0.05; // deg: within this of the C axis, C holds still
+  double retract = 5.0;           // mm along the tool axis before an unwind or a branch change
+  std::optional<double> safe_z;   // machine Z for rotary repositioning; unset: the Z max limit
+  int preferred_tilt = 0;         // +1 / -1: tilt sign chosen when both are equally good
 };
 
 struct SerialSettings {
@@ -78,8 +95,9 @@ struct MachineConfig {
   std::string name;
   KinematicsType kinematics = KinematicsType::xyz;
   AxisSet axes;
-  std::optional<TableTableGeometry> table_table; // set exactly for xyzac_trt
+  std::optional<RotaryGeometry> rotary; // set exactly for the five-axis types
   ControllerSettings controller;
+  PostSettings post;
 };
 
 [[nodiscard]] std::string_view to_string(KinematicsType type);

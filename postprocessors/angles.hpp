@@ -1,0 +1,23 @@
+#pragma once
+// Angle helpers shared by the kinematics and the rotary solution choice. Degrees outside,
+// radians only inside the trigonometry.
+
+#include <cmath>
+#include <numbers>
+
+namespace subfeed::post {
+
+inline constexpr double radians_per_degree = std::numbers::pi / 180.0;
+
+// Into (-180, 180].
+[[nodiscard]] inline double wrap_degrees(double angle) {
+  double a = std::fmod(angle, 360.0);
+  if (a <= -180.0) {
+    a += 360.0;
+  } else if (a > 180.0) {
+    a -= 360.0;
+  }
+  return a;
+}
+
+} // namespace subfeed::post

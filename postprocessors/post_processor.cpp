@@ -1,0 +1,371 @@
+#include "post/post_processor.hpp"
+
+#include "angles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace subfeed::post {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+constexpr int max_split_depth = 30;
+constexpr double moved = 1e-9; // mm or deg: less is no motion
+// Joint-linear motion is checked at these fractions of a block; the margin covers the
+// deviation between samples (the tests sample densely to hold the post to the tolerance).
+constexpr std::array<double, 3> samples{0.25, 0.5, 0.75};
+constexpr double sample_margin = 0.9;
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+double angle_deg(const Vec3& a, const Vec3& b) {
+  const Vec3 c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  return std::atan2(std::sqrt(dot(c, c)), dot(a, b)) / radians_per_degree;
+}
+
+Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
+  const double omega = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+  Vec3 out{};
+  if (omega < 1e-12) {
+    return a;
+  }
+  const double wa = std::sin((1.0 - t) * omega) / std::sin(omega);
+  const double wb = std::sin(t * omega) / std::sin(omega);
+  for (std::size_t i = 0; i < 3; ++i) {
+    out[i] = wa * a[i] + wb * b[i];
+  }
+  return out;
+}
+
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Vec3 ap{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(ap, ab) / len2, 0.0, 1.0) : 0.0;
+  const Vec3 d{ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
+  return std::sqrt(dot(d, d));
+}
+
+JointPosition lerp(const JointPosition& a, const JointPosition& b, double t) {
+  JointPosition out{};
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    out[i] = a[i] + t * (b[i] - a[i]);
+  }
+  return out;
+}
+
+} // namespace
+
+PostProcessor::PostProcessor(const MachineConfig& machine, const Kinematics& kinematics,
+                             PostOptions options, BlockSink sink)
+    : machine_(&machine), kinematics_(&kinematics), options_(options), sink_(std::move(sink)),
+      tracker_(kinematics, machine) {
+  // Each written coordinate may be off by half its last digit: the joints' rounding moves
+  // the tip by up to sqrt(3)/2 of a unit, which the splitting must leave room for.
+  const double rounding = std::sqrt(3.0) * 0.5 * std::pow(10.0, -options_.decimals);
+  split_tolerance_ = std::max(options_.tolerance - rounding, 0.25 * options_.tolerance);
+}
+
+double PostProcessor::safe_z() const {
+  return machine_->post.safe_z.value_or(machine_->axes[2]->max);
+}
+
+long PostProcessor::count_repositions(cl::ClReader& reader, const JointPosition& start) {
+  RotaryTracker tracker(*kinematics_, *machine_);
+  tracker.start_at(start);
+  long count = 0;
+  while (true) {
+    auto pose = reader.next();
+    if (!pose || !*pose) {
+      return pose ? count : std::numeric_limits<long>::max();
+    }
+    const auto step = tracker.step(**pose);
+    if (!step) {
+      return std::numeric_limits<long>::max();
+    }
+    count += step->reposition && (*pose)->kind != cl::MoveKind::rapid ? 1 : 0;
+  }
+}
+
+Expected<void> PostProcessor::choose_start(cl::ClReader& reader) {
+  SUBFEED_TRY_ASSIGN(const auto first, reader.next());
+  if (first) {
+    SUBFEED_TRY_ASSIGN(auto options, tracker_.start_candidates(*first));
+    if (options.size() > 1) {
+      std::vector<long> counts;
+      for (const auto& start : options) {
+        SUBFEED_TRY(reader.rewind());
+        (void)reader.next(); // the first pose itself
+        counts.push_back(count_repositions(reader, start));
+      }
+      const long fewest = *std::ranges::min_element(counts);
+      std::vector<JointPosition> best;
+      for (std::size_t i = 0; i < options.size(); ++i) {
+        if (counts[i] == fewest) {
+          best.push_back(options[i]);
+        }
+      }
+      options = std::move(best);
+    }
+    start_ = tracker_.prefer(options);
+  }
+  return reader.rewind();
+}
+
+Expected<void> PostProcessor::emit(MotionBlock block, const JointPosition* joints) {
+  if (joints != nullptr) {
+    machine_at_ = *joints;
+  } else {
+    for (std::size_t i = 0; i < block.axes.size(); ++i) {
+      if (block.axes[i]) {
+        machine_at_[i] = *block.axes[i];
+      }
+    }
+  }
+  ++stats_.blocks;
+  return sink_(block);
+}
+
+MotionBlock PostProcessor::block_for(const Placed& target, Motion motion) const {
+  MotionBlock block;
+  block.motion = motion;
+  block.cl_line = target.pose.line;
+  for (std::size_t i = 0; i < block.axes.size(); ++i) {
+    block.axes[i] = target.joints[i];
+  }
+  if (options_.tcp != TcpMode::off) {
+    block.tcp = true;
+    for (std::size_t i = 0; i < 3; ++i) {
+      block.axes[i] = target.pose.tip[i];
+    }
+    if (options_.tcp == TcpMode::vector) {
+      block.vector = target.pose.axis;
+      block.axes[3] = block.axes[4] = block.axes[5] = std::nullopt;
+    }
+  }
+  return block;
+}
+
+Expected<void> PostProcessor::rapid_words(const JointPosition& target,
+                                          std::initializer_list<std::size_t> axes, long line) {
+  MotionBlock block;
+  block.motion = Motion::rapid;
+  block.cl_line = line;
+  block.link = true;
+  for (const auto i : axes) {
+    block.axes[i] = target[i];
+  }
+  return emit(block);
+}
+
+PostProcessor::Placed PostProcessor::offset_along_axis(const Placed& at, double distance) const {
+  Placed out = at;
+  for (std::size_t i = 0; i < 3; ++i) {
+    out.pose.tip[i] += distance * at.pose.axis[i];
+  }
+  out.joints = tracker_.nearest({out.pose.tip, out.pose.axis}, at.joints);
+  return out;
+}
+
+Expected<void> PostProcessor::position(const Placed& target, bool feed_in) {
+  const Placed above = feed_in ? offset_along_axis(target, machine_->post.retract) : target;
+  const long line = target.pose.line;
+  bool turns = !last_;
+  for (std::size_t r = 3; r < 6; ++r) {
+    turns = turns || std::abs(machine_at_[r] - above.joints[r]) > moved;
+  }
+  if (turns) {
+    JointPosition up = machine_at_;
+    up[2] = safe_z();
+    SUBFEED_TRY(rapid_words(up, {2}, line));
+    SUBFEED_TRY(rapid_words(above.joints, {3, 4, 5}, line));
+    SUBFEED_TRY(rapid_words(above.joints, {0, 1}, line));
+  }
+  auto block = block_for(above, Motion::rapid);
+  block.link = feed_in;
+  if (turns && options_.tcp == TcpMode::off) {
+    block.axes = {};
+    block.axes[2] = above.joints[2];
+  }
+  SUBFEED_TRY(emit(block, &above.joints));
+  if (feed_in) {
+    return cut_segment(above, target, true);
+  }
+  return {};
+}
+
+Expected<void> PostProcessor::retract(const Placed& from) {
+  const Placed away = offset_along_axis(from, machine_->post.retract);
+  if (away.joints[2] < safe_z()) {
+    SUBFEED_TRY(cut_segment(from, away, true));
+  }
+  JointPosition up = machine_at_;
+  up[2] = safe_z();
+  MotionBlock block;
+  block.motion = Motion::rapid;
+  block.cl_line = from.pose.line;
+  block.link = true;
+  block.axes[2] = up[2];
+  return emit(block);
+}
+
+bool PostProcessor::within_tolerance(const Placed& from, const Placed& to) const {
+  if (options_.tcp != TcpMode::off) {
+    return true; // the control keeps the tip on the line
+  }
+  bool turns = false;
+  for (std::size_t r = 3; r < 6; ++r) {
+    turns = turns || std::abs(from.joints[r] - to.joints[r]) > moved;
+  }
+  if (!turns) {
+    return true; // linear axes alone move the tip on a straight line
+  }
+  const Vec3 a0 = kinematics_->forward(from.joints).axis;
+  const Vec3 a1 = kinematics_->forward(to.joints).axis;
+  for (const double t : samples) {
+    const ToolPose p = kinematics_->forward(lerp(from.joints, to.joints, t));
+    if (segment_distance(p.tip, from.pose.tip, to.pose.tip) > sample_margin * split_tolerance_ ||
+        angle_deg(p.axis, slerp(a0, a1, t)) > sample_margin * options_.axis_tolerance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+PostProcessor::Placed PostProcessor::midpoint(const Placed& from, const Placed& to) const {
+  Placed mid = to;
+  for (std::size_t i = 0; i < 3; ++i) {
+    mid.pose.tip[i] = 0.5 * (from.pose.tip[i] + to.pose.tip[i]);
+  }
+  mid.pose.axis = slerp(from.pose.axis, to.pose.axis, 0.5);
+  mid.joints = tracker_.nearest({mid.pose.tip, mid.pose.axis}, lerp(from.joints, to.joints, 0.5));
+  return mid;
+}
+
+Expected<void> PostProcessor::cut_segment(const Placed& from, const Placed& to, bool link) {
+  struct Span {
+    Placed from, to;
+    int depth;
+  };
+  // Depth-first, left half first, so blocks come out in path order; the stack holds at most
+  // one pending right half per level.
+  std::vector<Span> stack{{from, to, 0}};
+  while (!stack.empty()) {
+    Span span = std::move(stack.back());
+    stack.pop_back();
+    if (span.depth < max_split_depth && !within_tolerance(span.from, span.to)) {
+      const Placed mid = midpoint(span.from, span.to);
+      ++stats_.splits;
+      stack.push_back({mid, span.to, span.depth + 1});
+      stack.push_back({span.from, mid, span.depth + 1});
+      continue;
+    }
+    const auto& b = span.to;
+    const double minutes = block_minutes(span.from, b);
+    if (minutes <= 0.0) {
+      continue; // the same pose again
+    }
+    const auto length = programmed_length(span.from, b);
+    bool turns = false;
+    for (std::size_t r = 3; r < 6; ++r) {
+      turns = turns || std::abs(span.from.joints[r] - b.joints[r]) > moved;
+    }
+    auto block = block_for(b, Motion::linear);
+    block.link = link;
+    // Under TCP F is the tip's feed (slowed where an axis would exceed its max_feed); a
+    // turn in place has no tip feed and goes by inverse time.
+    const bool inverse = options_.tcp == TcpMode::off ? turns : length <= moved;
+    block.feed_mode = inverse ? FeedMode::inverse_time : FeedMode::per_minute;
+    block.feed = inverse ? 1.0 / minutes : length / minutes;
+    SUBFEED_TRY(emit(block, &b.joints));
+  }
+  return {};
+}
+
+double PostProcessor::rounded(double value, std::size_t axis) const {
+  const double scale = std::pow(10.0, options_.decimals + (is_rotary_axis(axis) ? 1 : 0));
+  return std::round(value * scale) / scale;
+}
+
+// The length the control computes from the written words: tool tip under TCP, else the tip
+// path's chord (which the joints' linear axes carry when no rotary axis turns).
+double PostProcessor::programmed_length(const Placed& a, const Placed& b) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double d = options_.tcp != TcpMode::off
+                         ? rounded(b.pose.tip[i], i) - rounded(a.pose.tip[i], i)
+                         : rounded(b.joints[i], i) - rounded(a.joints[i], i);
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+// Time for the block: the CL feed along the tip's path, or longer where an axis would
+// exceed its max_feed, measured on the rounded words the control will read.
+double PostProcessor::block_minutes(const Placed& a, const Placed& b) const {
+  const double tip = std::hypot(b.pose.tip[0] - a.pose.tip[0], b.pose.tip[1] - a.pose.tip[1],
+                                b.pose.tip[2] - a.pose.tip[2]);
+  double minutes = tip / b.pose.feed;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto& axis = machine_->axes[i];
+    const double delta = std::abs(rounded(b.joints[i], i) - rounded(a.joints[i], i));
+    if (axis && delta > 0.0) {
+      minutes = std::max(minutes, delta / axis->max_feed);
+    }
+  }
+  return minutes;
+}
+
+Expected<void> PostProcessor::cut(const Placed& from, const Placed& to) {
+  return cut_segment(from, to, false);
+}
+
+Expected<void> PostProcessor::add(const cl::ClPose& pose) {
+  ++stats_.poses;
+  if (!last_) {
+    if (!start_) {
+      SUBFEED_TRY_ASSIGN(const auto options, tracker_.start_candidates(pose));
+      start_ = tracker_.prefer(options);
+    }
+    tracker_.start_at(*start_);
+    const Placed first{pose, *start_};
+    SUBFEED_TRY(position(first, pose.kind != cl::MoveKind::rapid));
+    last_ = first;
+    return {};
+  }
+  SUBFEED_TRY_ASSIGN(const auto step, tracker_.step(pose));
+  const Placed next{pose, step.joints};
+  if (step.in_cone) {
+    ++stats_.cone_poses;
+    stats_.max_axis_hold =
+        std::max(stats_.max_axis_hold, angle_deg(kinematics_->forward(step.joints).axis, pose.axis));
+  }
+  if (pose.kind == cl::MoveKind::rapid) {
+    SUBFEED_TRY(position(next, false));
+  } else if (step.reposition) {
+    ++stats_.repositions;
+    SUBFEED_TRY(retract(*last_));
+    const Placed again{last_->pose, tracker_.nearest({last_->pose.tip, last_->pose.axis}, step.joints)};
+    SUBFEED_TRY(position(again, true));
+    SUBFEED_TRY(cut(again, next));
+  } else {
+    SUBFEED_TRY(cut(*last_, next));
+  }
+  last_ = next;
+  return {};
+}
+
+Expected<void> PostProcessor::finish() {
+  if (last_ && last_->pose.kind != cl::MoveKind::rapid) {
+    return retract(*last_);
+  }
+  if (last_) {
+    return rapid_words({0, 0, safe_z(), 0, 0, 0}, {2}, last_->pose.line);
+  }
+  return {};
+}
+
+} // namespace subfeed::post

@@ -1,0 +1,61 @@
+#include "cl/cl_writer.hpp"
+
+#include "base/decimal_text.hpp"
+
+#include <utility>
+
+namespace subfeed::cl {
+
+Expected<ClWriter> ClWriter::create(const std::filesystem::path& path, const ClHeader& header) {
+  SUBFEED_TRY_ASSIGN(auto out, AtomicOutputFile::create(path));
+  ClWriter writer(std::move(out), header.multiaxis);
+  std::string text = "PARTNO " + header.part_name + "\nUNITS/MM\nCUTTER/";
+  append_decimal(text, header.cutter.diameter, 6);
+  text += ',';
+  append_decimal(text, header.cutter.corner_radius, 6);
+  text += header.multiaxis ? "\nMULTAX/ON\n" : "\n";
+  writer.out_.write(text);
+  return writer;
+}
+
+ClWriter::ClWriter(AtomicOutputFile out, bool multiaxis)
+    : out_(std::move(out)), multiaxis_(multiaxis) {}
+
+void ClWriter::write(const ClPose& pose) {
+  buffer_.clear();
+  if (pose.kind == MoveKind::rapid) {
+    buffer_ += "RAPID\n";
+  } else {
+    if (pose.feed != feed_) {
+      buffer_ += "FEDRAT/";
+      append_decimal(buffer_, pose.feed, 3);
+      buffer_ += '\n';
+      feed_ = pose.feed;
+    }
+    if (pose.kind == MoveKind::plunge) {
+      buffer_ += "PLUNGE\n";
+    } else if (pose.kind == MoveKind::retract) {
+      buffer_ += "RETRACT\n";
+    }
+  }
+  buffer_ += "GOTO/";
+  for (std::size_t i = 0; i < 3; ++i) {
+    append_fixed(buffer_, pose.tip[i], 6);
+    buffer_ += ',';
+  }
+  if (multiaxis_) {
+    for (std::size_t i = 0; i < 3; ++i) {
+      append_fixed(buffer_, pose.axis[i], 9);
+      buffer_ += ',';
+    }
+  }
+  buffer_.back() = '\n';
+  out_.write(buffer_);
+}
+
+Expected<void> ClWriter::finish() {
+  out_.write("FINI\n");
+  return out_.commit();
+}
+
+} // namespace subfeed::cl

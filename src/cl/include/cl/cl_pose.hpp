@@ -1,0 +1,38 @@
+#pragma once
+// The pose at the seam between planning and post-processing (ARCHITECTURE.md): where the
+// tool tip goes, which way the tool points, and how it gets there. The one type the
+// geometry core and the postprocessors share; it knows nothing of meshes or machines.
+
+#include <array>
+#include <string>
+
+namespace subfeed::cl {
+
+enum class MoveKind {
+  rapid,   // positioning at the machine's rapid rate, off the part
+  feed,    // cutting at `feed`
+  plunge,  // feeding toward the part (an approach)
+  retract, // feeding away from the part
+};
+
+struct ClPose {
+  std::array<double, 3> tip{};  // mm, workpiece frame
+  std::array<double, 3> axis{}; // unit vector from the tip toward the spindle
+  MoveKind kind = MoveKind::feed;
+  double feed = 0.0; // mm/min at the tool tip; 0 for rapids
+  long line = 0;     // source line in the CL file (0 when not read from a file)
+};
+
+struct Cutter {
+  double diameter = 0.0;      // mm
+  double corner_radius = 0.0; // mm; diameter / 2 for a ball end
+};
+
+// What the records before the first motion say.
+struct ClHeader {
+  std::string part_name;
+  Cutter cutter;
+  bool multiaxis = false; // MULTAX/ON: every GOTO carries the tool axis
+};
+
+} // namespace subfeed::cl

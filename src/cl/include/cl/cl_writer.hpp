@@ -1,0 +1,31 @@
+#pragma once
+// Writes APT-style CL data one pose at a time into an AtomicOutputFile: the file appears
+// under its name only after finish(). Writes only records ClReader accepts; a FEDRAT only
+// when the feed changes. Positions with 6 decimals (1 nm), axis components with 9.
+
+#include "base/atomic_output_file.hpp"
+#include "cl/cl_pose.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace subfeed::cl {
+
+class ClWriter {
+public:
+  [[nodiscard]] static Expected<ClWriter> create(const std::filesystem::path& path,
+                                                 const ClHeader& header);
+  void write(const ClPose& pose);
+  // Writes FINI and moves the file into place.
+  [[nodiscard]] Expected<void> finish();
+
+private:
+  explicit ClWriter(AtomicOutputFile out, bool multiaxis);
+
+  AtomicOutputFile out_;
+  bool multiaxis_;
+  double feed_ = -1.0;
+  std::string buffer_;
+};
+
+} // namespace subfeed::cl
