@@ -90,10 +90,40 @@ long PostProcessor::count_repositions(cl::ClReader& reader, const JointPosition&
   }
 }
 
+// At the pole C is free and the first pose offers one solution, yet the C it starts with
+// decides the branch the path takes when it leaves the pole: offer the C of every solution
+// of the first pose off the pole.
+Expected<std::vector<JointPosition>> PostProcessor::pole_start_candidates(cl::ClReader& reader,
+                                                                          const cl::ClPose& first) {
+  SUBFEED_TRY_ASSIGN(auto options, tracker_.start_candidates(first));
+  if (!tracker_.in_cone(first.axis)) {
+    return options;
+  }
+  while (true) {
+    SUBFEED_TRY_ASSIGN(const auto pose, reader.next());
+    if (!pose) {
+      return options;
+    }
+    if (!tracker_.in_cone(pose->axis)) {
+      auto later = tracker_.start_candidates(*pose);
+      if (!later) {
+        return options;
+      }
+      std::vector<JointPosition> starts;
+      for (const auto& j : *later) {
+        auto start = tracker_.nearest({first.tip, first.axis}, j);
+        start[5] = j[5];
+        starts.push_back(start);
+      }
+      return starts;
+    }
+  }
+}
+
 Expected<void> PostProcessor::choose_start(cl::ClReader& reader) {
   SUBFEED_TRY_ASSIGN(const auto first, reader.next());
   if (first) {
-    SUBFEED_TRY_ASSIGN(auto options, tracker_.start_candidates(*first));
+    SUBFEED_TRY_ASSIGN(auto options, pole_start_candidates(reader, *first));
     if (options.size() > 1) {
       std::vector<long> counts;
       for (const auto& start : options) {

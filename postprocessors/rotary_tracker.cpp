@@ -10,7 +10,7 @@ namespace subfeed::post {
 namespace {
 
 constexpr std::size_t c_axis = 5;
-constexpr double limit_slack = 1e-9; // mm or deg: round-off at a limit is not a violation
+constexpr double limit_slack = 1e-6; // mm or deg: round-off at a limit is not a violation
 constexpr double tie = 1e-9;         // deg: rotary moves this close are equally good
 
 ToolPose tool_pose(const cl::ClPose& pose) { return {pose.tip, pose.axis}; }
@@ -142,6 +142,10 @@ RotaryTracker::start_candidates(const cl::ClPose& pose) const {
     return unreachable(pose, c.unconstrained.front());
   }
   return c.feasible;
+}
+
+bool RotaryTracker::in_cone(const std::array<double, 3>& axis) const {
+  return tilt_ != 0 && std::abs(axis[2]) > cone_cos_;
 }
 
 JointPosition RotaryTracker::prefer(const std::vector<JointPosition>& options) const {

@@ -187,3 +187,101 @@ TEST_CASE("the shipped A/C configs give working kinematics") {
     }
   }
 }
+
+namespace {
+
+MachineConfig bc_trt(int p, int q) {
+  MachineConfig m;
+  m.kinematics = KinematicsType::xyzbc_trt;
+  m.rotary = RotaryGeometry{.pivot = {-15, 25, -140},
+                            .x_offset = 6.5,
+                            .z_offset = 110.0,
+                            .tool_length = 33.0,
+                            .tilt_direction = p,
+                            .c_direction = q};
+  return m;
+}
+
+MachineConfig ac_head(int p, int q) {
+  MachineConfig m;
+  m.kinematics = KinematicsType::xyzac_head;
+  m.rotary = RotaryGeometry{
+      .pivot_length = 150.0, .tool_length = 60.0, .tilt_direction = p, .c_direction = q};
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("xyzbc-trt and xyzac-head: forward after inverse returns the pose, every convention") {
+  std::mt19937 rng(4);
+  for (const auto make : {bc_trt, ac_head}) {
+    for (const int p : {1, -1}) {
+      for (const int q : {1, -1}) {
+        const auto kinematics = make_kinematics(make(p, q));
+        double worst_tip = 0.0, worst_axis = 0.0;
+        for (int i = 0; i < 5000; ++i) {
+          const ToolPose pose = random_pose(rng, 179.0);
+          const auto solutions = kinematics->inverse(pose, {});
+          REQUIRE(solutions.size() == 2);
+          for (const auto& j : solutions) {
+            const ToolPose back = kinematics->forward(j);
+            worst_tip = std::max(worst_tip, distance(back.tip, pose.tip));
+            worst_axis = std::max(worst_axis, distance(back.axis, pose.axis));
+          }
+        }
+        CHECK(worst_tip < 1e-9);
+        CHECK(worst_axis < 1e-12);
+      }
+    }
+  }
+}
+
+TEST_CASE("xyzbc-trt: the tool axis lands on the spindle and the tip where the table carries it") {
+  // machine = Ry(-p B) (Rz(-q C) Q - D) + D + pivot, D = (Dx, 0, Dz + tool length).
+  std::mt19937 rng(5);
+  for (const int p : {1, -1}) {
+    for (const int q : {1, -1}) {
+      const auto machine = bc_trt(p, q);
+      const auto& g = *machine.rotary;
+      const auto kinematics = make_kinematics(machine);
+      for (int i = 0; i < 500; ++i) {
+        const ToolPose pose = random_pose(rng);
+        for (const auto& j : kinematics->inverse(pose, {})) {
+          const Eigen::Matrix3d rb(Eigen::AngleAxisd(-p * j[4] * deg, Eigen::Vector3d::UnitY()));
+          const Eigen::Matrix3d rc(Eigen::AngleAxisd(-q * j[5] * deg, Eigen::Vector3d::UnitZ()));
+          const Eigen::Vector3d axis(pose.axis[0], pose.axis[1], pose.axis[2]);
+          CHECK((rb * rc * axis - Eigen::Vector3d::UnitZ()).norm() < 1e-12);
+          const Eigen::Vector3d pivot(g.pivot[0], g.pivot[1], g.pivot[2]);
+          const Eigen::Vector3d d(g.x_offset, 0, g.z_offset + g.tool_length);
+          const Eigen::Vector3d tip(pose.tip[0], pose.tip[1], pose.tip[2]);
+          const Eigen::Vector3d expected = rb * (rc * (tip - pivot) - d) + d + pivot;
+          CHECK((Eigen::Vector3d(j[0], j[1], j[2]) - expected).norm() < 1e-9);
+          CHECK(j[3] == 0.0);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("xyzac-head: the pivot sits the pivot and tool lengths up the tool axis") {
+  std::mt19937 rng(6);
+  for (const int p : {1, -1}) {
+    for (const int q : {1, -1}) {
+      const auto kinematics = make_kinematics(ac_head(p, q));
+      for (int i = 0; i < 500; ++i) {
+        const ToolPose pose = random_pose(rng);
+        for (const auto& j : kinematics->inverse(pose, {})) {
+          // The head turns the spindle direction (0, 0, 1) by Rz(q C) Rx(p A).
+          const Eigen::Vector3d spindle =
+              Eigen::AngleAxisd(q * j[5] * deg, Eigen::Vector3d::UnitZ()) *
+              (Eigen::AngleAxisd(p * j[3] * deg, Eigen::Vector3d::UnitX()) *
+               Eigen::Vector3d::UnitZ());
+          const Eigen::Vector3d axis(pose.axis[0], pose.axis[1], pose.axis[2]);
+          CHECK((spindle - axis).norm() < 1e-12);
+          const Eigen::Vector3d tip(pose.tip[0], pose.tip[1], pose.tip[2]);
+          CHECK((Eigen::Vector3d(j[0], j[1], j[2]) - (tip + 210.0 * axis)).norm() < 1e-9);
+        }
+      }
+    }
+  }
+}

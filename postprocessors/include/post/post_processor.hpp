@@ -77,6 +77,8 @@ private:
   [[nodiscard]] double rounded(double value, std::size_t axis) const;
   [[nodiscard]] double programmed_length(const Placed& a, const Placed& b) const;
   [[nodiscard]] double block_minutes(const Placed& a, const Placed& b) const;
+  [[nodiscard]] Expected<std::vector<JointPosition>> pole_start_candidates(cl::ClReader& reader,
+                                                                         const cl::ClPose& first);
   [[nodiscard]] long count_repositions(cl::ClReader& reader, const JointPosition& start);
 
   const MachineConfig* machine_;

@@ -32,6 +32,8 @@ public:
   // limited rotary axis: the starting states the look-ahead compares. Error (naming the CL
   // line) when there is none.
   [[nodiscard]] Expected<std::vector<JointPosition>> start_candidates(const cl::ClPose& pose) const;
+  // Whether C is free (held) for a tool along this axis.
+  [[nodiscard]] bool in_cone(const std::array<double, 3>& axis) const;
   // The one of `options` a fresh start takes: least rotation from zero, then the preferred tilt.
   [[nodiscard]] JointPosition prefer(const std::vector<JointPosition>& options) const;
   void start_at(const JointPosition& joints);
