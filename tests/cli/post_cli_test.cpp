@@ -1,0 +1,74 @@
+// `subfeed post` and `subfeed check` as a user runs them on the shipped examples.
+
+#include "support/run_process.hpp"
+#include "support/temp_dir.hpp"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using subfeed::testing::run_process;
+using subfeed::testing::TempDir;
+
+namespace {
+
+const std::string bin = SUBFEED_BIN;
+const std::string source_dir = SUBFEED_SOURCE_DIR;
+
+} // namespace
+
+TEST_CASE("post then check the 5-axis example for each shipped A/C machine and dialect") {
+  TempDir dir;
+  for (const std::string machine : {"grblhal-xyzac-trt", "fanuc-xyzac-trt"}) {
+    for (const std::string dialect : {"grbl", "fanuc", "linuxcnc"}) {
+      INFO(machine << " " << dialect);
+      const auto nc = (dir.path() / (machine + "-" + dialect + ".nc")).string();
+      const auto config = source_dir + "/configs/" + machine + ".toml";
+      const auto cl = source_dir + "/examples/dome-spiral.cl";
+      const auto post =
+          run_process({bin, "post", cl, "--machine", config, "--dialect", dialect, "-o", nc});
+      REQUIRE(post.exit_code == 0);
+      CHECK(post.out.find("803 poses") != std::string::npos);
+      const auto check = run_process({bin, "check", nc, "--machine", config, "--cl", cl});
+      CHECK(check.exit_code == 0);
+      CHECK(check.out.find("check passed") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("check fails with exit 2 when the program leaves the CL path") {
+  TempDir dir;
+  const auto nc = (dir.path() / "bowl.nc").string();
+  const auto config = source_dir + "/configs/grbl-router-3axis.toml";
+  const auto cl = source_dir + "/examples/bowl-raster.cl";
+  REQUIRE(run_process({bin, "post", cl, "--machine", config, "-o", nc}).exit_code == 0);
+  std::ifstream in(nc);
+  std::stringstream text;
+  text << in.rdbuf();
+  in.close();
+  std::string program = text.str();
+  const auto at = program.find("\nX-15.");
+  REQUIRE(at != std::string::npos);
+  program.replace(at, 6, "\nX-15.1");
+  std::ofstream(nc) << program;
+  const auto check = run_process({bin, "check", nc, "--machine", config, "--cl", cl});
+  CHECK(check.exit_code == 2);
+  CHECK(check.err == "subfeed: error: " + nc + ": check failed: see the report above\n");
+}
+
+TEST_CASE("post refuses bad input in one line, exit 2, and writes nothing") {
+  TempDir dir;
+  const auto cl = dir.write("bad.cl", "UNITS/MM\nCUTTER/6\nFEDRAT/100\nGOTO/1,2\nFINI\n");
+  const auto nc = dir.path() / "bad.nc";
+  const auto post = run_process({bin, "post", cl.string(), "--machine",
+                                 source_dir + "/configs/grbl-router-3axis.toml", "-o", nc.string()});
+  CHECK(post.exit_code == 2);
+  CHECK(post.err == "subfeed: error: " + cl.string() + ":4: GOTO needs x,y,z (MULTAX is off)\n");
+  CHECK_FALSE(std::filesystem::exists(nc));
+  const auto tcp = run_process({bin, "post", source_dir + "/examples/dome-spiral.cl", "--machine",
+                                source_dir + "/configs/grblhal-xyzac-trt.toml", "--tcp", "angles",
+                                "-o", nc.string()});
+  CHECK(tcp.exit_code != 0);
+  CHECK_FALSE(std::filesystem::exists(nc));
+}
