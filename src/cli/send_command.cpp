@@ -164,7 +164,7 @@ Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& ser
     SUBFEED_TRY_ASSIGN(auto pty, sim::Pty::open());
     sim::GrblSimOptions sim_options;
     sim_options.grblhal = o.sim == "grblhal";
-    sim_options.axes = sim_options.grblhal ? 5 : 3;
+    sim_options.axes = sim_options.grblhal ? 6 : 3; // grblHAL: X Y Z A B C, any 5-axis type
     sim_options.rx_buffer = sim_options.grblhal ? 1024 : 128;
     sim_options.planner_blocks = sim_options.grblhal ? 100 : 16;
     sim_options.line_limit = sim_options.grblhal ? 256 : 79;
