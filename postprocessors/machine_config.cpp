@@ -184,9 +184,10 @@ Expected<PostSettings> read_post(TomlTableReader& top, const AxisSet& axes) {
     }
   }
   if (p.has("preferred_tilt")) {
-    SUBFEED_TRY_ASSIGN(const std::string tilt,
-                       p.choice("preferred_tilt", {"positive", "negative", "either"}));
-    s.preferred_tilt = tilt == "positive" ? 1 : tilt == "negative" ? -1 : 0;
+    enum class Tilt { positive, negative, either };
+    SUBFEED_TRY_ASSIGN(const Tilt tilt,
+                       from_names<Tilt>(p, "preferred_tilt", {"positive", "negative", "either"}));
+    s.preferred_tilt = tilt == Tilt::positive ? 1 : tilt == Tilt::negative ? -1 : 0;
   }
   SUBFEED_TRY(p.finish());
   return s;
