@@ -184,3 +184,47 @@ TEST_CASE("every shipped machine config loads") {
   }
   CHECK(count >= 3);
 }
+
+TEST_CASE("xyzbc-trt and xyzac-head read their own geometry keys") {
+  auto bc = replace(replace(replace(replace(trt, "xyzac-trt", "xyzbc-trt"), "y_offset", "x_offset"),
+                            "a_direction", "b_direction"),
+                    "[axes.a]", "[axes.b]");
+  const auto config = parse_machine_config(bc, "m.toml");
+  REQUIRE(config);
+  CHECK(config->kinematics == KinematicsType::xyzbc_trt);
+  CHECK(config->rotary->x_offset == 4.0);
+  CHECK(config->rotary->tilt_direction == -1);
+  CHECK(config->axes[4]);
+  CHECK_FALSE(config->axes[3]);
+  expect_error(replace(bc, "x_offset", "y_offset"),
+               "m.toml:6: kinematics.y_offset: unknown key; did you mean 'x_offset'?");
+
+  const auto head = replace(replace(trt, "xyzac-trt", "xyzac-head"),
+                            "pivot = [1.0, 2.0, 3.0]\ny_offset = 4.0\nz_offset = 5.0\n",
+                            "pivot_length = 150.0\n");
+  const auto h = parse_machine_config(head, "m.toml");
+  REQUIRE(h);
+  CHECK(h->rotary->pivot_length == 150.0);
+  expect_error(replace(head, "pivot_length = 150.0", "pivot_length = -1.0"),
+               "m.toml:5: kinematics.pivot_length: -1 mm is outside 0..10000 mm");
+}
+
+TEST_CASE("the [post] table: defaults, values and errors") {
+  const auto plain = parse_machine_config(trt, "m.toml");
+  REQUIRE(plain);
+  CHECK(plain->post.singularity_cone == 0.05);
+  CHECK(plain->post.retract == 5.0);
+  CHECK_FALSE(plain->post.safe_z);
+  const auto with_post = trt + "[post]\nsingularity_cone = 0.2\nretract = 8\nsafe_z = -10.0\n"
+                               "preferred_tilt = \"negative\"\n";
+  const auto config = parse_machine_config(with_post, "m.toml");
+  REQUIRE(config);
+  CHECK(config->post.singularity_cone == 0.2);
+  CHECK(config->post.retract == 8.0);
+  CHECK(config->post.safe_z == -10.0);
+  CHECK(config->post.preferred_tilt == -1);
+  expect_error(replace(with_post, "safe_z = -10.0", "safe_z = 10.0"),
+               "m.toml:34: post.safe_z: must lie within the Z travel limits");
+  expect_error(replace(with_post, "\"negative\"", "\"down\""),
+               "m.toml:35: post.preferred_tilt: 'down' is not one of positive, negative, either");
+}
