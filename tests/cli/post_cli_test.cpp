@@ -18,9 +18,10 @@ const std::string source_dir = SUBFEED_SOURCE_DIR;
 
 } // namespace
 
-TEST_CASE("post then check the 5-axis example for each shipped A/C machine and dialect") {
+TEST_CASE("post then check the 5-axis example for each shipped five-axis machine and dialect") {
   TempDir dir;
-  for (const std::string machine : {"grblhal-xyzac-trt", "fanuc-xyzac-trt"}) {
+  for (const std::string machine : {"grblhal-xyzac-trt", "fanuc-xyzac-trt", "linuxcnc-xyzbc-trt",
+                                    "grblhal-xyzac-head"}) {
     for (const std::string dialect : {"grbl", "fanuc", "linuxcnc"}) {
       INFO(machine << " " << dialect);
       const auto nc = (dir.path() / (machine + "-" + dialect + ".nc")).string();
