@@ -114,8 +114,8 @@ int main() {
                    "CL poses read per second", read / read_seconds, true});
     bench::report({"blocks checked per second", run.blocks / run.check_seconds, "blocks/s",
                    "CL poses read per second", read / read_seconds, true});
-    std::printf("  (%ld poses -> %ld lines, worst tip deviation %.6f mm)\n", run.poses,
-                run.blocks, run.tip_deviation);
+    std::printf("  (%ld poses -> %ld lines, worst tip deviation %.6f mm)\n", run.poses, run.blocks,
+                run.tip_deviation);
     fs::remove(cl);
   }
   const char* env = std::getenv("SUBFEED_BENCH_POSES");

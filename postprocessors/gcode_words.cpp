@@ -40,7 +40,8 @@ Expected<std::vector<GcodeWord>> split_words(std::string_view line) {
       number.remove_prefix(1);
     }
     GcodeWord word{letter, 0.0};
-    const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), word.value);
+    const auto [end, ec] =
+        std::from_chars(number.data(), number.data() + number.size(), word.value);
     if (number.empty() || ec != std::errc{} || end != number.data() + number.size()) {
       return fail(ErrorCode::bad_input, std::string("word ") + letter + " has no valid number");
     }

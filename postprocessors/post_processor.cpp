@@ -1,6 +1,7 @@
 #include "post/post_processor.hpp"
 
 #include "angles.hpp"
+#include "vector_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,35 +11,12 @@ namespace subfeed::post {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
 constexpr int max_split_depth = 30;
 constexpr double moved = 1e-9; // mm or deg: less is no motion
 // Joint-linear motion is checked at these fractions of a block; the margin covers the
 // deviation between samples (the tests sample densely to hold the post to the tolerance).
 constexpr std::array<double, 3> samples{0.25, 0.5, 0.75};
 constexpr double sample_margin = 0.9;
-
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-double angle_deg(const Vec3& a, const Vec3& b) {
-  const Vec3 c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return std::atan2(std::sqrt(dot(c, c)), dot(a, b)) / radians_per_degree;
-}
-
-Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
-  const double omega = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-  Vec3 out{};
-  if (omega < 1e-12) {
-    return a;
-  }
-  const double wa = std::sin((1.0 - t) * omega) / std::sin(omega);
-  const double wb = std::sin(t * omega) / std::sin(omega);
-  for (std::size_t i = 0; i < 3; ++i) {
-    out[i] = wa * a[i] + wb * b[i];
-  }
-  return out;
-}
 
 double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -47,14 +25,6 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   const double t = len2 > 0.0 ? std::clamp(dot(ap, ab) / len2, 0.0, 1.0) : 0.0;
   const Vec3 d{ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
   return std::sqrt(dot(d, d));
-}
-
-JointPosition lerp(const JointPosition& a, const JointPosition& b, double t) {
-  JointPosition out{};
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    out[i] = a[i] + t * (b[i] - a[i]);
-  }
-  return out;
 }
 
 } // namespace
@@ -370,15 +340,16 @@ Expected<void> PostProcessor::add(const cl::ClPose& pose) {
   const Placed next{pose, step.joints};
   if (step.in_cone) {
     ++stats_.cone_poses;
-    stats_.max_axis_hold =
-        std::max(stats_.max_axis_hold, angle_deg(kinematics_->forward(step.joints).axis, pose.axis));
+    stats_.max_axis_hold = std::max(stats_.max_axis_hold,
+                                    angle_deg(kinematics_->forward(step.joints).axis, pose.axis));
   }
   if (pose.kind == cl::MoveKind::rapid) {
     SUBFEED_TRY(position(next, false));
   } else if (step.reposition) {
     ++stats_.repositions;
     SUBFEED_TRY(retract(*last_));
-    const Placed again{last_->pose, tracker_.nearest({last_->pose.tip, last_->pose.axis}, step.joints)};
+    const Placed again{last_->pose,
+                       tracker_.nearest({last_->pose.tip, last_->pose.axis}, step.joints)};
     SUBFEED_TRY(position(again, true));
     SUBFEED_TRY(cut(again, next));
   } else {

@@ -5,6 +5,7 @@
 #include "gcode_words.hpp"
 #include "post/kinematics.hpp"
 #include "post/post_file.hpp"
+#include "vector_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,33 +16,7 @@ namespace subfeed::post {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
 constexpr double moved = 1e-9;
-
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double distance(const Vec3& a, const Vec3& b) {
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-}
-double angle_deg(const Vec3& a, const Vec3& b) {
-  const Vec3 c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return std::atan2(std::sqrt(dot(c, c)), dot(a, b)) / radians_per_degree;
-}
-Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
-  const double omega = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-  if (omega < 1e-12) {
-    return a;
-  }
-  const double wa = std::sin((1 - t) * omega) / std::sin(omega), wb = std::sin(t * omega) / std::sin(omega);
-  return {wa * a[0] + wb * b[0], wa * a[1] + wb * b[1], wa * a[2] + wb * b[2]};
-}
-JointPosition lerp(const JointPosition& a, const JointPosition& b, double t) {
-  JointPosition out{};
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    out[i] = a[i] + t * (b[i] - a[i]);
-  }
-  return out;
-}
 
 void note(Finding& finding, double value, long line) {
   if (value > finding.value) {
@@ -113,15 +88,38 @@ private:
   Expected<void> g_word(double value) {
     const int code = static_cast<int>(std::lround(value * 10));
     switch (code) {
-    case 0: mode_.rapid = true; return {};
-    case 10: mode_.rapid = false; return {};
-    case 930: mode_.inverse_time = true; return {};
-    case 940: mode_.inverse_time = false; return {};
-    case 434: mode_.tcp = true; mode_.vector = false; return {};
-    case 435: mode_.tcp = true; mode_.vector = true; return {};
-    case 490: mode_.tcp = false; return {};
-    case 170: case 210: case 400: case 640: case 800: case 900: return {};
-    default: break;
+    case 0:
+      mode_.rapid = true;
+      return {};
+    case 10:
+      mode_.rapid = false;
+      return {};
+    case 930:
+      mode_.inverse_time = true;
+      return {};
+    case 940:
+      mode_.inverse_time = false;
+      return {};
+    case 434:
+      mode_.tcp = true;
+      mode_.vector = false;
+      return {};
+    case 435:
+      mode_.tcp = true;
+      mode_.vector = true;
+      return {};
+    case 490:
+      mode_.tcp = false;
+      return {};
+    case 170:
+    case 210:
+    case 400:
+    case 640:
+    case 800:
+    case 900:
+      return {};
+    default:
+      break;
     }
     std::ostringstream message;
     message << "G" << value << " is not understood by check (arcs, cycles, inches and "
@@ -215,14 +213,16 @@ private:
       tip_ = kinematics_->forward(to).tip;
     }
     check_limits(to);
-    const bool all_known = std::ranges::all_of(std::array{0, 1, 2}, [&](int i) { return known_[static_cast<std::size_t>(i)]; });
+    const bool all_known = std::ranges::all_of(
+        std::array{0, 1, 2}, [&](int i) { return known_[static_cast<std::size_t>(i)]; });
     if (mode_.rapid || !all_known) {
       return {};
     }
     return feed_block(from, from_tip, to, map);
   }
 
-  double block_minutes(const JointPosition& from, const Vec3& from_tip, const JointPosition& to) const {
+  double block_minutes(const JointPosition& from, const Vec3& from_tip,
+                       const JointPosition& to) const {
     if (mode_.inverse_time) {
       return 1.0 / mode_.feed;
     }

@@ -35,8 +35,8 @@ std::string ProgramWriter::comment(std::string_view text) const {
 }
 
 Expected<void> ProgramWriter::emit(std::string line, long cl_line, bool link) {
-  if (options_.line_numbers && options_.dialect != Dialect::grbl && !line.empty() &&
-      line != "%" && line.front() != 'O') {
+  if (options_.line_numbers && options_.dialect != Dialect::grbl && !line.empty() && line != "%" &&
+      line.front() != 'O') {
     block_number_ = block_number_ % 99999 + 1; // N has five digits
     line.insert(0, "N" + std::to_string(block_number_) + " ");
   }
@@ -49,8 +49,7 @@ Expected<void> ProgramWriter::emit(std::string line, long cl_line, bool link) {
   if (options_.dialect == Dialect::fanuc) {
     for (const char c : line) {
       if (!is_iso840(c)) {
-        return fail(ErrorCode::bad_input,
-                    "character outside ISO 840 in block '" + line + "'",
+        return fail(ErrorCode::bad_input, "character outside ISO 840 in block '" + line + "'",
                     {{}, static_cast<int>(cl_line), {}});
       }
     }

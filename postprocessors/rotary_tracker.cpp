@@ -13,7 +13,9 @@ constexpr std::size_t c_axis = 5;
 constexpr double limit_slack = 1e-6; // mm or deg: round-off at a limit is not a violation
 constexpr double tie = 1e-9;         // deg: rotary moves this close are equally good
 
-ToolPose tool_pose(const cl::ClPose& pose) { return {pose.tip, pose.axis}; }
+ToolPose tool_pose(const cl::ClPose& pose) {
+  return {pose.tip, pose.axis};
+}
 
 std::string format_value(double value) {
   char text[32];
@@ -30,7 +32,8 @@ RotaryTracker::RotaryTracker(const Kinematics& kinematics, const MachineConfig& 
 bool RotaryTracker::within_limits(const JointPosition& j) const {
   for (std::size_t i = 0; i < j.size(); ++i) {
     const auto& axis = machine_->axes[i];
-    if (axis && !axis->cyclic && (j[i] < axis->min - limit_slack || j[i] > axis->max + limit_slack)) {
+    if (axis && !axis->cyclic &&
+        (j[i] < axis->min - limit_slack || j[i] > axis->max + limit_slack)) {
       return false;
     }
   }
@@ -104,10 +107,9 @@ const JointPosition* RotaryTracker::best(const std::vector<JointPosition>& optio
   const int preferred = machine_->post.preferred_tilt;
   for (const auto& j : options) {
     const double d = rotary_distance(j, near);
-    const bool better =
-        chosen == nullptr || d < chosen_distance - tie ||
-        (d < chosen_distance + tie && preferred != 0 && j[tilt_] * preferred > 0.0 &&
-         (*chosen)[tilt_] * preferred <= 0.0);
+    const bool better = chosen == nullptr || d < chosen_distance - tie ||
+                        (d < chosen_distance + tie && preferred != 0 &&
+                         j[tilt_] * preferred > 0.0 && (*chosen)[tilt_] * preferred <= 0.0);
     if (better) {
       chosen = &j;
       chosen_distance = d;
@@ -132,8 +134,7 @@ std::unexpected<Error> RotaryTracker::unreachable(const cl::ClPose& pose,
               {{}, static_cast<int>(pose.line), {}});
 }
 
-Expected<std::vector<JointPosition>>
-RotaryTracker::start_candidates(const cl::ClPose& pose) const {
+Expected<std::vector<JointPosition>> RotaryTracker::start_candidates(const cl::ClPose& pose) const {
   const auto c = candidates(tool_pose(pose), current_);
   if (c.feasible.empty()) {
     if (c.unconstrained.empty()) {

@@ -34,7 +34,9 @@ AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
     : file_(std::exchange(other.file_, nullptr)), target_(std::move(other.target_)),
       temp_(std::move(other.temp_)) {}
 
-AtomicOutputFile::~AtomicOutputFile() { discard(); }
+AtomicOutputFile::~AtomicOutputFile() {
+  discard();
+}
 
 void AtomicOutputFile::discard() {
   if (file_ != nullptr) {
@@ -55,8 +57,8 @@ Expected<void> AtomicOutputFile::commit() {
   if (file_ == nullptr) {
     return fail(ErrorCode::bad_input, "output already closed", {target_.string(), 0, {}});
   }
-  const bool written = std::fflush(file_) == 0 && std::ferror(file_) == 0 &&
-                       ::fsync(::fileno(file_)) == 0;
+  const bool written =
+      std::fflush(file_) == 0 && std::ferror(file_) == 0 && ::fsync(::fileno(file_)) == 0;
   if (!written) {
     const auto error = io_error(target_, "cannot write output file");
     discard();

@@ -58,7 +58,8 @@ std::pair<std::string_view, std::string_view> split_record(std::string_view reco
 
 } // namespace
 
-ClReader::ClReader(std::string file, std::ifstream in) : file_(std::move(file)), in_(std::move(in)) {}
+ClReader::ClReader(std::string file, std::ifstream in)
+    : file_(std::move(file)), in_(std::move(in)) {}
 
 Expected<ClReader> ClReader::open(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

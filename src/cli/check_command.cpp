@@ -46,8 +46,8 @@ Expected<void> run_check(const CheckCommandOptions& o, Logger& log) {
                          o.tolerance, r.axis_deviation.value, at(r.axis_deviation),
                          r.allowed_axis_deviation));
   }
-  log.info(fmt::format("  tool tip feed max {:.1f} mm/min{}", r.max_tip_feed.value,
-                       at(r.max_tip_feed)));
+  log.info(
+      fmt::format("  tool tip feed max {:.1f} mm/min{}", r.max_tip_feed.value, at(r.max_tip_feed)));
   log.info(fmt::format("  limit violations {}{}, rotary jumps over 180 deg {}{}, blocks over an "
                        "axis max feed {}{}",
                        r.limit_violations, at(r.first_limit_violation), r.rotary_jumps,

@@ -50,12 +50,12 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
                      : o.tcp == "vector" ? post::TcpMode::vector
                                          : post::TcpMode::off;
   if (options.post.tcp != post::TcpMode::off && options.program.dialect == post::Dialect::grbl) {
-    return fail(ErrorCode::usage, "the grbl dialect has no tool-centre-point control", {{}, 0, "--tcp"});
+    return fail(ErrorCode::usage, "the grbl dialect has no tool-centre-point control",
+                {{}, 0, "--tcp"});
   }
   options.look_ahead = !o.no_look_ahead;
-  const std::string output = o.output.empty()
-                                 ? std::filesystem::path(o.cl).replace_extension(".nc").string()
-                                 : o.output;
+  const std::string output =
+      o.output.empty() ? std::filesystem::path(o.cl).replace_extension(".nc").string() : o.output;
   SUBFEED_TRY_ASSIGN(const auto summary, post::post_file(o.cl, machine, options, output));
   const auto& s = summary.stats;
   log.info(fmt::format("{}: {} poses -> {} lines ({} blocks, {} from splitting to {} mm / {} deg), "
@@ -82,12 +82,12 @@ void add_post_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--axis-tolerance", o->axis_tolerance,
                   "Tool axis deviation allowed between blocks, deg")
       ->check(CLI::Range(1e-4, 5.0));
-  cmd->add_option("--tcp", o->tcp,
-                  "Tool-centre-point output: off, angles (G43.4), vector (G43.5)")
+  cmd->add_option("--tcp", o->tcp, "Tool-centre-point output: off, angles (G43.4), vector (G43.5)")
       ->check(CLI::IsMember({"off", "angles", "vector"}));
   cmd->add_flag("--comments", o->comments, "Write comments (always on for linuxcnc)");
   cmd->add_flag("--line-numbers", o->line_numbers, "Write N numbers (fanuc, linuxcnc)");
-  cmd->add_option("--spindle", o->spindle, "Spindle speed, rpm: S and M3 at the start, M5 at the end")
+  cmd->add_option("--spindle", o->spindle,
+                  "Spindle speed, rpm: S and M3 at the start, M5 at the end")
       ->check(CLI::Range(1.0, 200000.0));
   cmd->add_flag("--no-look-ahead", o->no_look_ahead,
                 "Choose the starting solution from the first pose alone (one pass over the CL)");

@@ -20,8 +20,8 @@ const std::string source_dir = SUBFEED_SOURCE_DIR;
 
 TEST_CASE("post then check the 5-axis example for each shipped five-axis machine and dialect") {
   TempDir dir;
-  for (const std::string machine : {"grblhal-xyzac-trt", "fanuc-xyzac-trt", "linuxcnc-xyzbc-trt",
-                                    "grblhal-xyzac-head"}) {
+  for (const std::string machine :
+       {"grblhal-xyzac-trt", "fanuc-xyzac-trt", "linuxcnc-xyzbc-trt", "grblhal-xyzac-head"}) {
     for (const std::string dialect : {"grbl", "fanuc", "linuxcnc"}) {
       INFO(machine << " " << dialect);
       const auto nc = (dir.path() / (machine + "-" + dialect + ".nc")).string();
@@ -62,8 +62,9 @@ TEST_CASE("post refuses bad input in one line, exit 2, and writes nothing") {
   TempDir dir;
   const auto cl = dir.write("bad.cl", "UNITS/MM\nCUTTER/6\nFEDRAT/100\nGOTO/1,2\nFINI\n");
   const auto nc = dir.path() / "bad.nc";
-  const auto post = run_process({bin, "post", cl.string(), "--machine",
-                                 source_dir + "/configs/grbl-router-3axis.toml", "-o", nc.string()});
+  const auto post =
+      run_process({bin, "post", cl.string(), "--machine",
+                   source_dir + "/configs/grbl-router-3axis.toml", "-o", nc.string()});
   CHECK(post.exit_code == 2);
   CHECK(post.err == "subfeed: error: " + cl.string() + ":4: GOTO needs x,y,z (MULTAX is off)\n");
   CHECK_FALSE(std::filesystem::exists(nc));

@@ -138,7 +138,8 @@ TEST_CASE("bad CL data is refused with its line") {
   CHECK(error_of(replace(good, "FEDRAT/1200", "FEDRAT/-5")) ==
         "11: FEDRAT needs a feed > 0 in mm/min (optionally ,MMPM)");
   CHECK(error_of(replace(good, "RETRACT", "SPINDL/3000")) == "13: unknown record 'SPINDL'");
-  CHECK(error_of(replace(good, "RETRACT", "CUTTER/6")) == "13: CUTTER after the first motion record");
+  CHECK(error_of(replace(good, "RETRACT", "CUTTER/6")) ==
+        "13: CUTTER after the first motion record");
   CHECK(error_of(good + "GOTO/1,2,3,0,0,1\n") == "16: records after FINI");
   CHECK(error_of(replace(good, "CUTTER/6,3", "CUTTER/6,4")) ==
         "4: CUTTER needs a diameter > 0 and a corner radius from 0 to half of it");
@@ -147,8 +148,8 @@ TEST_CASE("bad CL data is refused with its line") {
 
 TEST_CASE("without MULTAX a GOTO has three numbers and the tool points up") {
   TempDir dir;
-  auto reader = cl::ClReader::open(
-      dir.write("p.cl", "UNITS/MM\nCUTTER/6\nFEDRAT/100\nGOTO/1,2,3\nFINI\n"));
+  auto reader =
+      cl::ClReader::open(dir.write("p.cl", "UNITS/MM\nCUTTER/6\nFEDRAT/100\nGOTO/1,2,3\nFINI\n"));
   REQUIRE(reader);
   auto pose = reader->next();
   REQUIRE(pose);

@@ -16,7 +16,12 @@ MachineConfig trt(int p, int q, std::array<double, 3> pivot = {10, -20, -150}, d
                   double dz = 120.0, double tool = 0.0) {
   MachineConfig m;
   m.kinematics = KinematicsType::xyzac_trt;
-  m.rotary = RotaryGeometry{.pivot = pivot, .y_offset = dy, .z_offset = dz, .tool_length = tool, .tilt_direction = p, .c_direction = q};
+  m.rotary = RotaryGeometry{.pivot = pivot,
+                            .y_offset = dy,
+                            .z_offset = dz,
+                            .tool_length = tool,
+                            .tilt_direction = p,
+                            .c_direction = q};
   return m;
 }
 

@@ -135,8 +135,9 @@ TEST_CASE("values out of range are errors naming the key and the range") {
   expect_error(replace(trt, "c_direction = 1", "c_direction = 0"),
                "m.toml:9: kinematics.c_direction: must be 1 (ISO: the tool turns by the right-hand "
                "rule) or -1 (LinuxCNC default)");
-  expect_error(replace(trt, "kinematics = \"xyzac-trt\"", "kinematics = \"xyzbc\""),
-               "m.toml:3: machine.kinematics: 'xyzbc' is not one of xyz, xyzac-trt, xyzbc-trt, xyzac-head");
+  expect_error(
+      replace(trt, "kinematics = \"xyzac-trt\"", "kinematics = \"xyzbc\""),
+      "m.toml:3: machine.kinematics: 'xyzbc' is not one of xyz, xyzac-trt, xyzbc-trt, xyzac-head");
   expect_error(trt + "rx_buffer = 8\n", "m.toml:31: controller.rx_buffer: 8 is outside 16..65536");
   expect_error(trt + "[controller.serial]\nbaud = 12345\n",
                "m.toml:32: controller.serial.baud: 12345 is not a standard rate (300..921600)");

@@ -30,8 +30,11 @@ post::MachineConfig trunnion(const std::string& c_axis = "cyclic = true\nmax_fee
                            "[axes.x]\nmin = -500.0\nmax = 500.0\nmax_feed = 20000\n"
                            "[axes.y]\nmin = -500.0\nmax = 500.0\nmax_feed = 20000\n"
                            "[axes.z]\nmin = -500.0\nmax = 200.0\nmax_feed = 20000\n"
-                           "[axes.a]\n" + a_limits + "max_feed = 20000\n"
-                           "[axes.c]\n" + c_axis +
+                           "[axes.a]\n" +
+                           a_limits +
+                           "max_feed = 20000\n"
+                           "[axes.c]\n" +
+                           c_axis +
                            "[controller]\nprotocol = \"grbl\"\nline_length = 256\ndecimals = 4\n";
   auto config = post::parse_machine_config(text, "test.toml");
   REQUIRE(config);
@@ -46,8 +49,8 @@ std::array<double, 3> direction(double tilt_deg, double azimuth_deg) {
 // CL data on a sphere of radius 25 about (0, 0, -10), the tool normal to it, at the
 // (tilt, azimuth) pairs `path` gives for s = 0..1; a rapid above the start first.
 std::filesystem::path sphere_cl(const TempDir& dir,
-                                const std::function<std::array<double, 2>(double)>& path,
-                                int poses, const std::string& name = "part.cl") {
+                                const std::function<std::array<double, 2>(double)>& path, int poses,
+                                const std::string& name = "part.cl") {
   const auto file = dir.path() / name;
   auto writer = cl::ClWriter::create(file, {"SPHERE", {6.0, 3.0}, true});
   REQUIRE(writer);
@@ -99,7 +102,12 @@ void require_clean(const post::CheckReport& r) {
 
 TEST_CASE("linearization keeps the tool tip within 2 um of the CL segments, sampled densely") {
   TempDir dir;
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{60.0 * s, 4 * 360.0 * s}; }, 400);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{60.0 * s, 4 * 360.0 * s};
+      },
+      400);
   const auto posted = post_and_check(cl, trunnion(), true, 200);
   require_clean(posted.check);
   CHECK(posted.summary.stats.splits > 0);
@@ -109,7 +117,12 @@ TEST_CASE("linearization keeps the tool tip within 2 um of the CL segments, samp
 
 TEST_CASE("a check of a tampered program fails on the tampered line") {
   TempDir dir;
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{40.0, 90.0 * s}; }, 50);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{40.0, 90.0 * s};
+      },
+      50);
   const auto machine = trunnion();
   const auto posted = post_and_check(cl, machine);
   require_clean(posted.check);
@@ -143,7 +156,10 @@ TEST_CASE("through the pole: C holds still in the cone and no rotary axis jumps"
   const auto machine = trunnion();
   SECTION("straight over the pole") {
     const auto cl = sphere_cl(
-        dir, [](double s) { return std::array{std::abs(60.0 * s - 30.0), s < 0.5 ? 180.0 : 0.0}; },
+        dir,
+        [](double s) {
+          return std::array{std::abs(60.0 * s - 30.0), s < 0.5 ? 180.0 : 0.0};
+        },
         200);
     const auto posted = post_and_check(cl, machine);
     require_clean(posted.check);
@@ -151,7 +167,12 @@ TEST_CASE("through the pole: C holds still in the cone and no rotary axis jumps"
   SECTION("just beside the pole, inside the cone") {
     // Azimuth sweeps 180 deg while the tilt stays 0.02 deg: the tool is within the 0.05 deg
     // cone, so C must not chase the azimuth.
-    const auto cl = sphere_cl(dir, [](double s) { return std::array{0.02, 180.0 * s}; }, 50);
+    const auto cl = sphere_cl(
+        dir,
+        [](double s) {
+          return std::array{0.02, 180.0 * s};
+        },
+        50);
     const auto posted = post_and_check(cl, machine);
     require_clean(posted.check);
     CHECK(posted.summary.stats.cone_poses == 50);
@@ -164,7 +185,12 @@ TEST_CASE("a limited C axis: the look-ahead picks the turn that needs no unwindi
   // out of travel; starting one turn back it fits.
   TempDir dir;
   const auto machine = trunnion("min = -400.0\nmax = 400.0\nmax_feed = 20000\n");
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{30.0, 540.0 * s}; }, 300);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{30.0, 540.0 * s};
+      },
+      300);
   const auto planned = post_and_check(cl, machine, true);
   require_clean(planned.check);
   CHECK(planned.summary.stats.repositions == 0);
@@ -177,7 +203,12 @@ TEST_CASE("where no start avoids it: retract, unwind, re-approach, and no jump w
   // C travels -200..200 deg and the path turns two full turns: at least one unwind.
   TempDir dir;
   const auto machine = trunnion("min = -200.0\nmax = 200.0\nmax_feed = 20000\n");
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{30.0, 720.0 * s}; }, 400);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{30.0, 720.0 * s};
+      },
+      400);
   const auto posted = post_and_check(cl, machine);
   require_clean(posted.check);
   CHECK(posted.summary.stats.repositions >= 1);
@@ -189,7 +220,12 @@ TEST_CASE("a branch change forced by the C travel: both branches, one retract") 
   // branch fits the whole sweep.
   TempDir dir;
   const auto machine = trunnion("min = -90.0\nmax = 90.0\nmax_feed = 20000\n");
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{30.0, -90.0 + 170.0 * s}; }, 170);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{30.0, -90.0 + 170.0 * s};
+      },
+      170);
   const auto posted = post_and_check(cl, machine);
   require_clean(posted.check);
   CHECK(posted.summary.stats.repositions == 1);
@@ -199,7 +235,12 @@ TEST_CASE("a pose out of reach is an error naming its CL line, and no output is 
   TempDir dir;
   const auto machine = trunnion();
   // Tilt grows to 110 deg: beyond A's -100..50 on both branches.
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{110.0 * s, 0.0}; }, 110);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{110.0 * s, 0.0};
+      },
+      110);
   post::PostFileOptions options;
   options.program = post::program_options_for(machine);
   const auto nc = dir.path() / "part.nc";
@@ -221,11 +262,15 @@ TEST_CASE("a 3-axis machine refuses a tilted tool") {
   auto machine = post::load_machine_config(std::string(SUBFEED_SOURCE_DIR) +
                                            "/configs/grbl-router-3axis.toml");
   REQUIRE(machine);
-  const auto cl = sphere_cl(dir, [](double s) { return std::array{10.0 * s, 0.0}; }, 10);
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        return std::array{10.0 * s, 0.0};
+      },
+      10);
   post::PostFileOptions options;
   options.program = post::program_options_for(*machine);
   const auto result = post::post_file(cl, *machine, options, dir.path() / "p.nc");
   REQUIRE_FALSE(result);
-  CHECK_THAT(result.error().describe(),
-             Catch::Contains("cannot point the tool that way"));
+  CHECK_THAT(result.error().describe(), Catch::Contains("cannot point the tool that way"));
 }

@@ -35,8 +35,7 @@ void compare_golden(const std::string& config, const std::string& golden,
   const auto out = dir.path() / "out.nc";
   REQUIRE(post::post_file(source + "/tests/post/golden/tilt.cl", *machine, options, out));
   CHECK(slurp(out) == slurp(source + "/tests/post/golden/" + golden));
-  CHECK(slurp(post::map_path_for(out)) ==
-        slurp(source + "/tests/post/golden/" + golden + ".map"));
+  CHECK(slurp(post::map_path_for(out)) == slurp(source + "/tests/post/golden/" + golden + ".map"));
 }
 
 } // namespace

@@ -15,12 +15,12 @@ enum class TcpMode { off, angles, vector }; // G43.4 with A/C words; G43.5 with 
 struct MotionBlock {
   Motion motion = Motion::linear;
   std::array<std::optional<double>, 6> axes{}; // X Y Z A B C words; unset: not moved
-  std::optional<std::array<double, 3>> vector;   // G43.5 tool axis I J K
+  std::optional<std::array<double, 3>> vector; // G43.5 tool axis I J K
   FeedMode feed_mode = FeedMode::per_minute;
-  double feed = 0.0;  // linear moves: mm/min (G94) or 1/min (G93)
-  bool tcp = false;   // X Y Z are the tool tip under G43.4/G43.5
-  long cl_line = 0;   // CL line this block serves (0: program frame)
-  bool link = false;  // off the CL path: approach, retract, reposition
+  double feed = 0.0; // linear moves: mm/min (G94) or 1/min (G93)
+  bool tcp = false;  // X Y Z are the tool tip under G43.4/G43.5
+  long cl_line = 0;  // CL line this block serves (0: program frame)
+  bool link = false; // off the CL path: approach, retract, reposition
 };
 
 } // namespace subfeed::post

@@ -36,9 +36,9 @@ struct PostOptions {
 struct PostStats {
   long poses = 0;
   long blocks = 0;
-  long splits = 0;        // extra blocks from linearization
-  long repositions = 0;   // retract-turn-re-approach sequences forced by limits
-  long cone_poses = 0;    // poses where C was held near the pole
+  long splits = 0;            // extra blocks from linearization
+  long repositions = 0;       // retract-turn-re-approach sequences forced by limits
+  long cone_poses = 0;        // poses where C was held near the pole
   double max_axis_hold = 0.0; // deg, largest axis error accepted inside the cone
 };
 
@@ -64,7 +64,8 @@ private:
     JointPosition joints{};
   };
   [[nodiscard]] Expected<void> emit(MotionBlock block, const JointPosition* joints = nullptr);
-  [[nodiscard]] Expected<void> rapid_words(const JointPosition& target, std::initializer_list<std::size_t> axes, long line);
+  [[nodiscard]] Expected<void> rapid_words(const JointPosition& target,
+                                           std::initializer_list<std::size_t> axes, long line);
   [[nodiscard]] Expected<void> position(const Placed& target, bool feed_in);
   [[nodiscard]] Expected<void> retract(const Placed& from);
   [[nodiscard]] Expected<void> cut(const Placed& from, const Placed& to);
@@ -78,7 +79,7 @@ private:
   [[nodiscard]] double programmed_length(const Placed& a, const Placed& b) const;
   [[nodiscard]] double block_minutes(const Placed& a, const Placed& b) const;
   [[nodiscard]] Expected<std::vector<JointPosition>> pole_start_candidates(cl::ClReader& reader,
-                                                                         const cl::ClPose& first);
+                                                                           const cl::ClPose& first);
   [[nodiscard]] long count_repositions(cl::ClReader& reader, const JointPosition& start);
 
   const MachineConfig* machine_;

@@ -16,9 +16,9 @@
 namespace subfeed::post {
 
 struct CheckOptions {
-  double tolerance = 0.002;     // mm
-  double axis_tolerance = 0.05; // deg; the machine's singularity cone is allowed on top
-  int samples_per_block = 8;    // points checked inside every feed block
+  double tolerance = 0.002;                // mm
+  double axis_tolerance = 0.05;            // deg; the machine's singularity cone is allowed on top
+  int samples_per_block = 8;               // points checked inside every feed block
   std::optional<std::filesystem::path> cl; // with PROGRAM.map beside the program
 };
 
@@ -32,9 +32,9 @@ struct CheckReport {
   long motion_blocks = 0;
   long feed_blocks = 0;
   long cut_blocks_compared = 0;
-  Finding tip_deviation;      // mm, against the CL segment
-  Finding axis_deviation;     // deg
-  Finding max_tip_feed;       // mm/min
+  Finding tip_deviation;  // mm, against the CL segment
+  Finding axis_deviation; // deg
+  Finding max_tip_feed;   // mm/min
   long limit_violations = 0;
   Finding first_limit_violation;
   long rotary_jumps = 0; // feed blocks turning a rotary axis by more than 180 deg

@@ -26,10 +26,10 @@ struct ProgramOptions {
   int decimals = 3;          // mm words; degrees get one more
   int line_length = 79;
   int program_number = 1;
-  std::string title;                   // program comment
-  std::optional<double> spindle_rpm;   // S and M3 at the start, M5 at the end
-  int tool_length_offset = 1;          // H for G43.4/G43.5
-  double blend_tolerance = 0.002;      // mm, LinuxCNC G64 P
+  std::string title;                 // program comment
+  std::optional<double> spindle_rpm; // S and M3 at the start, M5 at the end
+  int tool_length_offset = 1;        // H for G43.4/G43.5
+  double blend_tolerance = 0.002;    // mm, LinuxCNC G64 P
 };
 
 class ProgramWriter {
@@ -57,8 +57,8 @@ private:
   std::array<std::string, 6> last_axis_;
   std::array<std::string, 3> last_vector_;
   std::string last_feed_;
-  int motion_ = -1;     // last G0/G1
-  int feed_mode_ = -1;  // last G93/G94
+  int motion_ = -1;    // last G0/G1
+  int feed_mode_ = -1; // last G93/G94
   bool tcp_ = false;
   long lines_ = 0;
   long block_number_ = 0;

@@ -64,8 +64,8 @@ private:
 
   const Kinematics* kinematics_;
   const MachineConfig* machine_;
-  std::size_t tilt_;     // joint index of the tilting axis (3 or 4); 0 on a 3-axis machine
-  double cone_cos_;      // cos of the singularity cone half-angle
+  std::size_t tilt_; // joint index of the tilting axis (3 or 4); 0 on a 3-axis machine
+  double cone_cos_;  // cos of the singularity cone half-angle
   JointPosition current_{};
   bool started_ = false;
 };
