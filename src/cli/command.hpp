@@ -23,5 +23,7 @@ void add_send_command(CLI::App& app, Action& chosen);
 void add_ports_command(CLI::App& app, Action& chosen);
 void add_post_command(CLI::App& app, Action& chosen);
 void add_check_command(CLI::App& app, Action& chosen);
+void add_plan_command(CLI::App& app, Action& chosen);
+void add_verify_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

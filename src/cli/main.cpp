@@ -37,6 +37,8 @@ int run(int argc, char** argv) {
   app.fallthrough();
   subfeed::cli::Action chosen;
   subfeed::cli::add_inspect_command(app, chosen);
+  subfeed::cli::add_plan_command(app, chosen);
+  subfeed::cli::add_verify_command(app, chosen);
   subfeed::cli::add_config_command(app, chosen);
   subfeed::cli::add_send_command(app, chosen);
   subfeed::cli::add_ports_command(app, chosen);

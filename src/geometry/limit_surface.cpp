@@ -161,6 +161,14 @@ Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const
 
 namespace subfeed::geometry {
 
+Expected<LimitSample> LimitSurface::evaluate_regular(int face, double u, double v) const {
+  auto s = evaluate(face, u, v);
+  for (double nudge = 1e-7; !s && has_patch(face) && nudge <= 1e-3; nudge *= 10.0) {
+    s = evaluate(face, u + nudge * (0.5 - u), v + nudge * (0.5 - v));
+  }
+  return s;
+}
+
 FaceTessellation LimitSurface::tessellate(int face, int rate) const {
   FaceTessellation out;
   if (!has_patch(face)) {

@@ -15,44 +15,53 @@ double distance_to_segment(const Eigen::Vector3d& p, const Capsule& c) {
   return (p - (c.a + u * ab)).norm();
 }
 
-// f(t) = distance(p + t n, segment) - r is convex in t (distance to a convex set along a
-// line), so its minimum on [0, t_max] is found by golden section and its first root below
-// that minimum by bisection.
+// Smallest root >= 0 of a t^2 + b t + c = 0, computed without cancellation.
+std::optional<double> first_root(double a, double b, double c) {
+  const double disc = b * b - 4.0 * a * c;
+  if (a <= 0.0 || disc < 0.0) {
+    return std::nullopt;
+  }
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  double t0 = q / a, t1 = q != 0.0 ? c / q : t0;
+  if (t0 > t1) {
+    std::swap(t0, t1);
+  }
+  if (t0 >= 0.0) {
+    return t0;
+  }
+  return t1 >= 0.0 ? std::optional<double>(t1) : std::nullopt;
+}
+
+// Where the ray p + t n (n unit, p outside) first enters the capsule: the cylinder around
+// the segment's inner part or either end sphere, whichever comes first.
 std::optional<double> entry(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const Capsule& c,
                             double t_max) {
-  const auto f = [&](double t) { return distance_to_segment(p + t * n, c) - c.radius; };
-  if (f(0.0) <= 0.0) {
-    return 0.0;
+  std::optional<double> best;
+  const auto keep = [&](std::optional<double> t) {
+    if (t && *t <= t_max && (!best || *t < *best)) {
+      best = t;
+    }
+  };
+  for (const Eigen::Vector3d* centre : {&c.a, &c.b}) {
+    const Eigen::Vector3d m = p - *centre;
+    keep(first_root(1.0, 2.0 * m.dot(n), m.squaredNorm() - c.radius * c.radius));
   }
-  constexpr double phi = 0.6180339887498949;
-  double lo = 0.0, hi = t_max;
-  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < 200 && hi - lo > 1e-13 * (1.0 + t_max); ++i) {
-    if (f1 < f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - phi * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + phi * (hi - lo);
-      f2 = f(x2);
+  const Eigen::Vector3d d = c.b - c.a;
+  const double length2 = d.squaredNorm();
+  if (length2 > 0.0) {
+    const Eigen::Vector3d m = p - c.a;
+    const Eigen::Vector3d n_perp = n - (n.dot(d) / length2) * d;
+    const Eigen::Vector3d m_perp = m - (m.dot(d) / length2) * d;
+    const auto t = first_root(n_perp.squaredNorm(), 2.0 * m_perp.dot(n_perp),
+                              m_perp.squaredNorm() - c.radius * c.radius);
+    if (t) {
+      const double along = (m + *t * n).dot(d) / length2;
+      if (along >= 0.0 && along <= 1.0) {
+        keep(t);
+      }
     }
   }
-  double inside = 0.5 * (lo + hi);
-  if (f(inside) > 0.0) {
-    return std::nullopt; // the ray passes the capsule by
-  }
-  double outside = 0.0;
-  for (int i = 0; i < 200 && inside - outside > 1e-15 * (1.0 + t_max); ++i) {
-    const double mid = 0.5 * (outside + inside);
-    (f(mid) > 0.0 ? outside : inside) = mid;
-  }
-  return inside;
+  return best;
 }
 
 } // namespace

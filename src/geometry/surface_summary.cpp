@@ -57,7 +57,7 @@ Expected<SurfaceSummary> summarize(const Cage& cage, const LimitSurface& surface
     std::vector<Eigen::Vector3d> points;
     points.reserve(tess.uv.size());
     for (const auto& uv : tess.uv) {
-      auto sample = surface.evaluate(f, uv.x(), uv.y());
+      auto sample = surface.evaluate_regular(f, uv.x(), uv.y());
       if (!sample) {
         return std::unexpected(sample.error());
       }

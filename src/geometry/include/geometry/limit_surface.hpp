@@ -51,6 +51,11 @@ public:
   // (u, v) must lie in the face's domain; a degenerate tangent plane is an error.
   [[nodiscard]] Expected<LimitSample> evaluate(int face, double u, double v) const;
 
+  // As evaluate(), but where the tangent plane degenerates (a valence-2 corner of an
+  // interpolated boundary) the sample is taken a hair inside the face (at most 1e-3 of the
+  // way to its centre), which is the limit of its neighbourhood.
+  [[nodiscard]] Expected<LimitSample> evaluate_regular(int face, double u, double v) const;
+
   // `rate` segments along each edge of the face (1..256); empty for a face without patch.
   [[nodiscard]] FaceTessellation tessellate(int face, int rate) const;
 

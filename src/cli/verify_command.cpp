@@ -1,0 +1,80 @@
+// `subfeed verify CAGE.obj PART.cl --tool ball:D [--svg out.svg]`: the independent scallop
+// measurement of a path on its surface (geometry/path_verifier.hpp).
+
+#include "command.hpp"
+#include "tool_spec.hpp"
+
+#include "geometry/limit_surface.hpp"
+#include "geometry/obj_reader.hpp"
+#include "geometry/path_verifier.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+namespace subfeed::cli {
+
+namespace {
+
+struct VerifyCommandOptions {
+  std::string cage;
+  std::string cl;
+  std::string tool;
+  double scallop = 0.0;
+  double spacing = 0.0;
+  std::string svg;
+  int level = geometry::min_approx_level;
+};
+
+Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
+  SUBFEED_TRY_ASSIGN(const double radius, parse_ball_tool(o.tool));
+  SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_obj(o.cage));
+  SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.level));
+  geometry::VerifyOptions options;
+  options.ball_radius = radius;
+  if (o.scallop > 0.0) {
+    options.scallop_target = o.scallop;
+  }
+  options.sample_spacing = o.spacing;
+  if (!o.svg.empty()) {
+    options.svg = o.svg;
+  }
+  SUBFEED_TRY_ASSIGN(const auto r, geometry::verify_path(surface, o.cl, options));
+  log.info(fmt::format("{} on {}: {} samples over {:.2f} mm^2 ({} not reached by the ball)", o.cl,
+                       o.cage, r.samples, r.area, r.uncut_samples));
+  log.info(fmt::format("  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
+                       "percentile {:.6f} mm",
+                       r.max_scallop, r.max_at.x(), r.max_at.y(), r.max_at.z(), r.mean_scallop,
+                       r.p99_scallop));
+  log.info(fmt::format("  gouges {} samples, deepest {:.6f} mm{}", r.gouges, r.max_gouge,
+                       r.gouges > 0 ? fmt::format(" (near {:.3f}, {:.3f}, {:.3f})", r.gouge_at.x(),
+                                                  r.gouge_at.y(), r.gouge_at.z())
+                                    : std::string()));
+  log.info(fmt::format("  path {:.1f} mm, cutting {:.1f} mm, {} passes, {} points; L* {:.1f} mm, "
+                       "L/L* {:.3f}",
+                       r.path_length, r.cutting_length, r.passes, r.points, r.ideal_length,
+                       r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
+  if (!o.svg.empty()) {
+    log.info("  picture: " + o.svg);
+  }
+  return {};
+}
+
+} // namespace
+
+void add_verify_command(CLI::App& app, Action& chosen) {
+  auto o = std::make_shared<VerifyCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("verify", "Measure the scallop and gouges a CL path leaves");
+  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")->required()->type_name("CAGE.obj");
+  cmd->add_option("cl", o->cl, "CL data")->required()->type_name("PART.cl");
+  cmd->add_option("--tool", o->tool, "Cutter: ball:D (diameter D mm)")->required();
+  cmd->add_option("--scallop", o->scallop, "Target for the ideal length L* (default: the measured maximum)")
+      ->check(CLI::Range(1e-6, 100.0));
+  cmd->add_option("--spacing", o->spacing, "Sample spacing on the surface, mm (default: ball radius / 30)")
+      ->check(CLI::Range(1e-4, 100.0));
+  cmd->add_option("--svg", o->svg, "Write a top view of the passes over a scallop heat map");
+  cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
+      ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
+  cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_verify(*o, log); }; });
+}
+
+} // namespace subfeed::cli

@@ -1,0 +1,39 @@
+#pragma once
+// The CL-surface deformation of Kim & Yang as METHOD.md §3 corrects it: every CL vertex
+// gets a deformed coordinate xi' along the slicing normal s with d(xi')/d(xi) = eta =
+// reference / interval, solved over the whole mesh as sparse least squares over its edges
+// (one vertex anchored per connected piece; Eigen's sparse LDLT). Planes equally spaced by
+// `reference` in xi' then cut the original surface at the varying intervals each vertex
+// needs.
+//
+// Being first order, the result is measured: on every triangle the spacing between the
+// level lines of xi' (the passes) is compared with the spacing its vertices need, eta is
+// raised where it is too wide and the system solved again (the factorisation is reused).
+
+#include "base/error.hpp"
+#include "geometry/pass_intervals.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace subfeed::geometry {
+
+struct Deformation {
+  std::vector<double> xi;       // s . c per CL vertex, mm
+  std::vector<double> deformed; // xi' per CL vertex, mm
+  double reference = 0.0;       // plane spacing in xi', mm
+  int iterations = 0;           // solves made
+  double worst_ratio = 0.0;     // largest measured/needed spacing after the last solve
+};
+
+[[nodiscard]] Expected<Deformation>
+deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
+               const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
+               const PassIntervals& intervals, int max_iterations = 6);
+
+// The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval.
+[[nodiscard]] Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points,
+                                     const Eigen::Vector3d& s, const PassIntervals& intervals);
+
+} // namespace subfeed::geometry

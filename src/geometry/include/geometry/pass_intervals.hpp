@@ -1,0 +1,29 @@
+#pragma once
+// What spacing each CL vertex needs for the scallop target (METHOD.md §2): the radius of
+// normal curvature across the passes (the slicing normal projected into the tangent
+// plane), the spacing between ball centres that leaves scallop h, and the distance between
+// slicing planes that gives it at the local slope.
+
+#include "geometry/surface_mesh.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace subfeed::geometry {
+
+struct PassIntervals {
+  std::vector<double> cl_spacing;     // mm between neighbouring ball centres across passes
+  std::vector<double> plane_interval; // mm between slicing planes
+  std::vector<char> reachable;        // 0 where a concave radius below the ball's forbids it
+  double min_interval = 0.0;
+  double max_interval = 0.0;
+};
+
+// `slicing_normal` is the unit normal s of the planes. Where the surface faces along s (a
+// wall the planes meet edge-on) the interval is kept at least `min_fraction` of the CL
+// spacing so the pass count stays finite.
+[[nodiscard]] PassIntervals pass_intervals(const SurfaceMesh& mesh, double ball_radius,
+                                           double scallop, const Eigen::Vector3d& slicing_normal,
+                                           double min_fraction = 0.05);
+
+} // namespace subfeed::geometry

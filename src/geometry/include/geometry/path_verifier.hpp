@@ -1,0 +1,48 @@
+#pragma once
+// `subfeed verify`: measures what a CL path leaves on the limit surface, independently of
+// the planner (it reads only the cage's surface and the CL data). Dense samples of the
+// design surface are measured against the capsules the ball sweeps between consecutive
+// feed poses (scallop_meter.hpp); each sample is then pushed sideways, across the nearest
+// pass, to the local maximum so cusps between sample points are not missed.
+//
+// The ideal bound L* = integral of dA / w(h, rho) (METHOD.md §5) uses the measured worst
+// scallop as h (or the target when given), rho across the nearest pass, and w from the
+// circle geometry of two neighbouring balls, written here on its own.
+
+#include "base/error.hpp"
+#include "cl/cl_reader.hpp"
+#include "geometry/limit_surface.hpp"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <optional>
+
+namespace subfeed::geometry {
+
+struct VerifyOptions {
+  double ball_radius = 3.0;                  // mm
+  std::optional<double> scallop_target;      // mm, for L*; default the measured maximum
+  double sample_spacing = 0.0;               // mm; 0: a quarter of the typical pass spacing
+  std::optional<std::filesystem::path> svg;  // top view over a scallop heat map
+};
+
+struct VerifyReport {
+  long samples = 0;
+  long uncut_samples = 0; // not reached by any ball within one radius above the surface
+  double max_scallop = 0.0, mean_scallop = 0.0, p99_scallop = 0.0; // mm
+  Eigen::Vector3d max_at = Eigen::Vector3d::Zero(); // where the worst scallop is, mm
+  long gouges = 0;
+  double max_gouge = 0.0;  // mm
+  Eigen::Vector3d gouge_at = Eigen::Vector3d::Zero(); // where the deepest gouge is
+  double path_length = 0.0, cutting_length = 0.0; // mm
+  long passes = 0, points = 0;
+  double area = 0.0;       // mm^2 of the surface measured
+  double ideal_length = 0.0; // L*, mm
+};
+
+[[nodiscard]] Expected<VerifyReport> verify_path(const LimitSurface& surface,
+                                                 const std::filesystem::path& cl,
+                                                 const VerifyOptions& options);
+
+} // namespace subfeed::geometry

@@ -1,0 +1,45 @@
+#pragma once
+// The limit surface as one welded triangle mesh, fine enough that its chords stay within a
+// tolerance of the true surface. Every vertex carries the exact limit point, unit normal
+// (toward the tool) and curvature from Bfr, not values estimated from the triangles. Where
+// normals disagree at the same point (a sharp crease) the vertices stay separate, one per
+// side, so the offset surface can see the tear.
+
+#include "base/error.hpp"
+#include "geometry/limit_surface.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace subfeed::geometry {
+
+struct SurfaceMesh {
+  std::vector<Eigen::Vector3d> points;  // mm
+  std::vector<Eigen::Vector3d> normals; // unit, toward the tool
+  // Second fundamental form as a symmetric 3x3 matrix W in the work frame: the normal
+  // curvature along a unit tangent t is t' W t (1/mm; negative where the surface bends away
+  // from the tool, i.e. convex).
+  std::vector<Eigen::Matrix3d> curvature;
+  std::vector<std::array<int, 3>> triangles; // counter-clockwise seen from the tool
+  int rate = 0;                              // segments per cage face edge used
+
+  [[nodiscard]] int vertex_count() const { return static_cast<int>(points.size()); }
+  [[nodiscard]] int triangle_count() const { return static_cast<int>(triangles.size()); }
+  // Signed radius of normal curvature along unit tangent t at vertex i: > 0 convex, < 0
+  // concave, +-infinity flat.
+  [[nodiscard]] double radius_along(int i, const Eigen::Vector3d& t) const;
+};
+
+// W for one limit sample (see SurfaceMesh::curvature).
+[[nodiscard]] Eigen::Matrix3d curvature_matrix(const LimitSample& sample);
+
+// The face tessellation rate that keeps every chord within `chord_tolerance` (mm) of the
+// surface, estimated from second derivatives sampled over every face; clamped to 2..max_rate.
+[[nodiscard]] int rate_for_tolerance(const LimitSurface& surface, double chord_tolerance,
+                                     int max_rate = 128);
+
+[[nodiscard]] Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
+                                                 int rate);
+
+} // namespace subfeed::geometry

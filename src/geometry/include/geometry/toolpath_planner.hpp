@@ -1,0 +1,109 @@
+#pragma once
+// Constant-scallop tool paths on a limit surface by CL-surface deformation (Yuan & Shao
+// 2012, METHOD.md §1-4), produced one pass at a time:
+//  1. the limit surface meshed within a chordal tolerance well under the scallop target;
+//  2. the CL surface: ball centres c = p + r n on that mesh;
+//  3. per CL vertex the plane interval that leaves exactly the target scallop;
+//  4. the deformation along the slicing normal (sparse least squares, then measured and
+//     refined until no triangle's passes lie farther apart than it needs);
+//  5. equally spaced planes in the deformed space, each slice mapped back exactly;
+//  6. the tool axis from area-weighted triangle normals within a radius, smoothed along
+//     the pass (or fixed vertical for three axes);
+//  7. CL points that would put the ball into the surface (hollows narrower than the ball,
+//     concave creases) dropped and counted as unreachable;
+//  8. points along a pass reduced to a chordal tolerance; passes zig-zag or one way, linked
+//     by a retract along the tool axis, a rapid and a plunge; last, one pass along every
+//     boundary of the surface, which the slicing planes meet at an angle.
+// With `baseline` the planes are spaced evenly at the smallest interval instead (plain
+// iso-planar passes with the same worst-case scallop), for comparison.
+
+#include "base/error.hpp"
+#include "cl/cl_pose.hpp"
+#include "geometry/deformation.hpp"
+#include "geometry/limit_surface.hpp"
+#include "geometry/pass_intervals.hpp"
+#include "geometry/point_grid.hpp"
+#include "geometry/surface_mesh.hpp"
+
+#include <functional>
+#include <optional>
+
+namespace subfeed::geometry {
+
+struct PlanOptions {
+  double ball_radius = 3.0;            // mm
+  double scallop = 0.01;               // mm
+  double direction_deg = 0.0;          // feed direction in the XY plane, from +X
+  bool baseline = false;
+  std::optional<double> axis_radius;   // zeta, mm; default: the ball radius
+  bool fixed_axis = false;             // vertical tool (three axes)
+  bool zigzag = true;
+  std::optional<double> tolerance;     // mm along a pass; default min(h/10, 0.4 um)
+  double feed = 1000.0;                // mm/min
+  double plunge_feed = 300.0;          // mm/min
+  double clearance = 2.0;              // mm, retract along the tool axis between passes
+  int refine_iterations = 6;
+  int max_rate = 96;                   // tessellation segments per cage face edge
+};
+
+struct PlanSummary {
+  int rate = 0;
+  long mesh_vertices = 0;
+  long mesh_triangles = 0;
+  long unreachable_vertices = 0;
+  double min_interval = 0.0; // mm between planes, over the surface
+  double max_interval = 0.0;
+  double reference = 0.0;    // plane spacing in deformed space
+  int solves = 0;
+  double worst_spacing_ratio = 0.0; // measured/needed, after refinement
+  long planes = 0;
+  long passes = 0;           // polylines cut
+  long points = 0;           // feed points written
+  long trimmed_points = 0;   // CL points dropped because the ball would gouge
+  double cut_length = 0.0;   // mm of feed moves along passes
+  double link_length = 0.0;  // mm of retracts, rapids and plunges
+};
+
+class ToolpathPlanner {
+public:
+  using Sink = std::function<Expected<void>(const cl::ClPose&)>;
+  using Progress = std::function<void(long plane, long planes)>;
+
+  // Meshes, offsets, computes intervals and solves the deformation.
+  [[nodiscard]] static Expected<ToolpathPlanner> prepare(const Cage& cage,
+                                                         const LimitSurface& surface,
+                                                         const PlanOptions& options);
+  // Slices plane after plane and hands every pose to `sink` as soon as its pass is done.
+  [[nodiscard]] Expected<void> run(const Sink& sink, const Progress& progress = {});
+
+  [[nodiscard]] const PlanSummary& summary() const { return summary_; }
+  [[nodiscard]] const SurfaceMesh& mesh() const { return mesh_; }
+  [[nodiscard]] Eigen::Vector3d slicing_normal() const { return s_; }
+
+private:
+  struct PassPoint {
+    Eigen::Vector3d centre, contact, normal, axis;
+  };
+  ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
+  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design,
+                                                                   double reach2);
+  void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
+  [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
+  [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink);
+  [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink);
+  [[nodiscard]] Expected<void> put(const cl::ClPose& pose, const Sink& sink);
+
+  PlanOptions options_;
+  SurfaceMesh mesh_;
+  Eigen::Vector3d s_, feed_dir_;
+  std::vector<Eigen::Vector3d> cl_points_;
+  std::vector<Eigen::Vector3d> centroids_, area_normals_;
+  Deformation deformation_;
+  double chord_tolerance_ = 0.0;
+  double safe_z_ = 0.0;
+  double link_distance_ = 0.0;
+  std::optional<cl::ClPose> last_;
+  PlanSummary summary_;
+};
+
+} // namespace subfeed::geometry

@@ -1,0 +1,54 @@
+#include "geometry/pass_intervals.hpp"
+
+#include "geometry/step_over.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace subfeed::geometry {
+
+namespace {
+
+// Beyond this radius the curved formulas' x underflows: the surface is flat to rounding.
+constexpr double flat_radius = 1e9;
+
+} // namespace
+
+PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h,
+                             const Eigen::Vector3d& s, double min_fraction) {
+  PassIntervals out;
+  const auto n_vertices = static_cast<std::size_t>(mesh.vertex_count());
+  out.cl_spacing.resize(n_vertices);
+  out.plane_interval.resize(n_vertices);
+  out.reachable.assign(n_vertices, 1);
+  out.min_interval = std::numeric_limits<double>::infinity();
+  const double flat = flat_step(r, h);
+  for (std::size_t i = 0; i < n_vertices; ++i) {
+    const Eigen::Vector3d& n = mesh.normals[i];
+    const double sn = std::clamp(s.dot(n), -1.0, 1.0);
+    const Eigen::Vector3d across = s - sn * n;
+    double spacing = flat;
+    if (across.norm() > 1e-9) {
+      const double rho = mesh.radius_along(static_cast<int>(i), across.normalized());
+      if (rho < 0.0 && -rho <= r * (1.0 + 1e-9)) {
+        out.reachable[i] = 0; // the ball is wider than the hollow
+      } else if (std::abs(rho) < flat_radius) {
+        spacing = cl_step(r, h, rho);
+      }
+    }
+    out.cl_spacing[i] = spacing;
+    const double interval = std::max(plane_interval(spacing, sn), min_fraction * spacing);
+    out.plane_interval[i] = interval;
+    if (out.reachable[i] != 0) {
+      out.min_interval = std::min(out.min_interval, interval);
+      out.max_interval = std::max(out.max_interval, interval);
+    }
+  }
+  if (!std::isfinite(out.min_interval)) {
+    out.min_interval = out.max_interval = flat;
+  }
+  return out;
+}
+
+} // namespace subfeed::geometry

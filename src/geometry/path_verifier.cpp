@@ -1,0 +1,339 @@
+#include "geometry/path_verifier.hpp"
+
+#include "base/atomic_output_file.hpp"
+#include "geometry/scallop_meter.hpp"
+#include "geometry/step_over.hpp"
+#include "geometry/surface_mesh.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fmt/format.h>
+#include <unordered_map>
+
+namespace subfeed::geometry {
+
+namespace {
+
+struct Path {
+  std::vector<Capsule> capsules;
+  std::vector<std::vector<Eigen::Vector2d>> passes_xy; // for the picture
+};
+
+Expected<Path> read_path(const std::filesystem::path& file, double r, VerifyReport& report) {
+  SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(file));
+  Path path;
+  std::optional<cl::ClPose> last;
+  while (true) {
+    SUBFEED_TRY_ASSIGN(const auto pose, reader.next());
+    if (!pose) {
+      break;
+    }
+    const Eigen::Vector3d tip(pose->tip[0], pose->tip[1], pose->tip[2]);
+    const Eigen::Vector3d axis(pose->axis[0], pose->axis[1], pose->axis[2]);
+    if (last) {
+      const Eigen::Vector3d from(last->tip[0], last->tip[1], last->tip[2]);
+      const Eigen::Vector3d from_axis(last->axis[0], last->axis[1], last->axis[2]);
+      const double length = (tip - from).norm();
+      report.path_length += length;
+      if (pose->kind != cl::MoveKind::rapid) {
+        path.capsules.push_back({from + r * from_axis, tip + r * axis, r});
+      }
+      if (pose->kind == cl::MoveKind::feed) {
+        report.cutting_length += length;
+      }
+    }
+    if (pose->kind == cl::MoveKind::plunge) {
+      ++report.passes;
+      path.passes_xy.emplace_back();
+    }
+    if (pose->kind == cl::MoveKind::feed || pose->kind == cl::MoveKind::plunge) {
+      ++report.points;
+      if (path.passes_xy.empty()) {
+        path.passes_xy.emplace_back();
+      }
+      path.passes_xy.back().emplace_back(tip.x(), tip.y());
+    }
+    last = pose;
+  }
+  return path;
+}
+
+// Capsules by the cells of size r their boxes (grown by r) touch.
+class CapsuleGrid {
+public:
+  CapsuleGrid(const std::vector<Capsule>& capsules, double cell) : capsules_(&capsules), cell_(cell) {
+    for (std::size_t i = 0; i < capsules.size(); ++i) {
+      const auto& c = capsules[i];
+      const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - c.radius;
+      const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + c.radius;
+      const auto a = cell_of(lo), b = cell_of(hi);
+      for (long long x = a[0]; x <= b[0]; ++x) {
+        for (long long y = a[1]; y <= b[1]; ++y) {
+          for (long long z = a[2]; z <= b[2]; ++z) {
+            cells_[key(x, y, z)].push_back(static_cast<int>(i));
+          }
+        }
+      }
+    }
+  }
+  void near(const Eigen::Vector3d& p, std::vector<Capsule>& out) const {
+    out.clear();
+    const auto c = cell_of(p);
+    const auto found = cells_.find(key(c[0], c[1], c[2]));
+    if (found != cells_.end()) {
+      for (const int i : found->second) {
+        out.push_back((*capsules_)[static_cast<std::size_t>(i)]);
+      }
+    }
+  }
+
+private:
+  std::array<long long, 3> cell_of(const Eigen::Vector3d& p) const {
+    return {static_cast<long long>(std::floor(p.x() / cell_)),
+            static_cast<long long>(std::floor(p.y() / cell_)),
+            static_cast<long long>(std::floor(p.z() / cell_))};
+  }
+  static std::uint64_t key(long long x, long long y, long long z) {
+    const auto part = [](long long v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
+    return part(x) << 42 | part(y) << 21 | part(z);
+  }
+  const std::vector<Capsule>* capsules_;
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+// Unit direction across the nearest pass, in the tangent plane at p.
+std::optional<Eigen::Vector3d> across_nearest(const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                                              const std::vector<Capsule>& near) {
+  double best = 1e300;
+  std::optional<Eigen::Vector3d> out;
+  for (const auto& c : near) {
+    const Eigen::Vector3d d = c.b - c.a;
+    if (d.squaredNorm() <= 0.0) {
+      continue;
+    }
+    const double u = std::clamp((p - c.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const double dist = (c.a + u * d - p).norm();
+    const Eigen::Vector3d across = n.cross(d);
+    if (dist < best && across.norm() > 1e-12) {
+      best = dist;
+      out = across.normalized();
+    }
+  }
+  return out;
+}
+
+struct Sample {
+  int face;
+  double u, v;
+  double height;
+};
+
+struct Measurer {
+  const LimitSurface& surface;
+  const CapsuleGrid& grid;
+  double r;
+  std::vector<Capsule> near;
+
+  std::optional<ScallopSample> at(int face, double u, double v) {
+    const auto s = surface.evaluate_regular(face, u, v);
+    if (!s) {
+      return std::nullopt;
+    }
+    grid.near(s->point, near);
+    return measure_scallop(s->point, s->normal, near, r);
+  }
+};
+
+// Golden-section search for the highest scallop across the nearest pass, within +-reach.
+double refine(Measurer& m, const Sample& s, double reach, double& gouge) {
+  const auto base = m.surface.evaluate_regular(s.face, s.u, s.v);
+  if (!base || m.surface.face_size(s.face) != 4) {
+    return s.height;
+  }
+  m.grid.near(base->point, m.near);
+  const auto across = across_nearest(base->point, base->normal, m.near);
+  if (!across) {
+    return s.height;
+  }
+  Eigen::Matrix<double, 3, 2> j;
+  j << base->du, base->dv;
+  const Eigen::Vector2d step = (j.transpose() * j).ldlt().solve(j.transpose() * *across);
+  const auto height = [&](double x) {
+    const double u = std::clamp(s.u + x * step.x(), 0.0, 1.0);
+    const double v = std::clamp(s.v + x * step.y(), 0.0, 1.0);
+    const auto h = m.at(s.face, u, v);
+    if (!h) {
+      return 0.0;
+    }
+    gouge = std::max(gouge, h->gouge_depth);
+    return std::isfinite(h->height) ? h->height : 0.0;
+  };
+  constexpr double phi = 0.6180339887498949;
+  double lo = -reach, hi = reach;
+  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
+  double f1 = height(x1), f2 = height(x2);
+  for (int i = 0; i < 30; ++i) {
+    if (f1 > f2) {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - phi * (hi - lo), f1 = height(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + phi * (hi - lo), f2 = height(x2);
+    }
+  }
+  return std::max({s.height, f1, f2});
+}
+
+Expected<void> write_svg(const std::filesystem::path& file, const std::vector<Eigen::Vector3d>& points,
+                         const std::vector<double>& heights, double max_height, const Path& path) {
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  }
+  constexpr int pixels = 240;
+  const double size = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  const double px = size / pixels;
+  const int w = static_cast<int>(std::ceil((hi.x() - lo.x()) / px)) + 1;
+  const int h = static_cast<int>(std::ceil((hi.y() - lo.y()) / px)) + 1;
+  std::vector<double> image(static_cast<std::size_t>(w * h), -1.0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int x = static_cast<int>((points[i].x() - lo.x()) / px);
+    const int y = static_cast<int>((points[i].y() - lo.y()) / px);
+    auto& cell = image[static_cast<std::size_t>(y * w + x)];
+    cell = std::max(cell, heights[i]);
+  }
+  SUBFEED_TRY_ASSIGN(auto out, AtomicOutputFile::create(file));
+  out.write(fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
+                        "height=\"{}\">\n<g shape-rendering=\"crispEdges\">\n",
+                        w * 3, h * 3 + 30, w * 3, h * 3 + 30));
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const double v = image[static_cast<std::size_t>(y * w + x)];
+      if (v < 0.0) {
+        continue;
+      }
+      // Blue (none) to red (the worst scallop); black where the ball cut below the surface.
+      const double f = max_height > 0.0 ? std::clamp(v / max_height, 0.0, 1.0) : 0.0;
+      const auto colour = v == 0.0 ? std::string("#000") :
+          fmt::format("rgb({},{},{})", static_cast<int>(255 * f), static_cast<int>(80 * (1 - f)),
+                      static_cast<int>(255 * (1 - f)));
+      out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"3\" height=\"3\" fill=\"{}\"/>\n",
+                            x * 3, (h - 1 - y) * 3, colour));
+    }
+  }
+  out.write("</g>\n<g fill=\"none\" stroke=\"#fff\" stroke-width=\"0.6\">\n");
+  for (const auto& pass : path.passes_xy) {
+    std::string pts;
+    for (std::size_t i = 0; i < pass.size(); i += std::max<std::size_t>(1, pass.size() / 400)) {
+      pts += fmt::format("{:.1f},{:.1f} ", (pass[i].x() - lo.x()) / px * 3,
+                         (h - 1 - (pass[i].y() - lo.y()) / px) * 3);
+    }
+    out.write("<polyline points=\"" + pts + "\"/>\n");
+  }
+  out.write(fmt::format("</g>\n<text x=\"4\" y=\"{}\" font-size=\"14\" font-family=\"sans-serif\">"
+                        "scallop 0 (blue) to {:.4f} mm (red); white: passes</text>\n</svg>\n",
+                        h * 3 + 20, max_height));
+  return out.commit();
+}
+
+} // namespace
+
+Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::filesystem::path& cl,
+                                   const VerifyOptions& options) {
+  VerifyReport report;
+  const double r = options.ball_radius;
+  SUBFEED_TRY_ASSIGN(const auto path, read_path(cl, r, report));
+  if (path.capsules.empty()) {
+    return fail(ErrorCode::bad_input, "no cutting moves in the CL data", {cl.string(), 0, {}});
+  }
+  const CapsuleGrid grid(path.capsules, r);
+  const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
+  Measurer m{surface, grid, r, {}};
+  std::vector<Sample> samples;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> weights;
+  for (int f = 0; f < surface.face_count(); ++f) {
+    if (!surface.has_patch(f)) {
+      continue;
+    }
+    const auto centre = surface.evaluate_regular(f, 0.5, 0.5);
+    const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
+    const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
+    const auto tess = surface.tessellate(f, rate);
+    for (const auto& uv : tess.uv) {
+      const auto s = surface.evaluate_regular(f, uv.x(), uv.y());
+      if (!s) {
+        continue;
+      }
+      grid.near(s->point, m.near);
+      const auto h = measure_scallop(s->point, s->normal, m.near, r);
+      ++report.samples;
+      if (h.gouge_depth > 1e-7) { // below 0.1 um: rounding of the CL data
+        ++report.gouges;
+        if (h.gouge_depth > report.max_gouge) {
+          report.max_gouge = h.gouge_depth;
+          report.gouge_at = s->point;
+        }
+      }
+      if (!std::isfinite(h.height)) {
+        ++report.uncut_samples;
+        continue;
+      }
+      samples.push_back({f, uv.x(), uv.y(), h.height});
+      points.push_back(s->point);
+      // Each sample stands for the area of one parameter cell of the face.
+      weights.push_back(s->du.cross(s->dv).norm() / (static_cast<double>(rate) * rate));
+    }
+  }
+  std::vector<double> heights;
+  for (const auto& s : samples) {
+    heights.push_back(s.height);
+  }
+  std::vector<double> sorted = heights;
+  std::ranges::sort(sorted);
+  const double coarse_max = sorted.empty() ? 0.0 : sorted.back();
+  double sum = 0.0;
+  for (const double h : heights) {
+    sum += h;
+  }
+  report.mean_scallop = heights.empty() ? 0.0 : sum / static_cast<double>(heights.size());
+  report.p99_scallop = sorted.empty() ? 0.0 : sorted[sorted.size() * 99 / 100];
+  report.max_scallop = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].height >= 0.5 * coarse_max) {
+      double gouge = 0.0;
+      heights[i] = refine(m, samples[i], spacing, gouge);
+      if (heights[i] > report.max_scallop) {
+        report.max_scallop = heights[i];
+        report.max_at = points[i];
+      }
+      report.max_gouge = std::max(report.max_gouge, gouge);
+    }
+  }
+  const double h = options.scallop_target.value_or(report.max_scallop);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    report.area += weights[i];
+    const auto s = surface.evaluate_regular(samples[i].face, samples[i].u, samples[i].v);
+    grid.near(s->point, m.near);
+    const auto across = across_nearest(s->point, s->normal, m.near);
+    double rho = 1e300;
+    if (across) {
+      const double kappa = across->dot(curvature_matrix(*s) * *across);
+      rho = kappa != 0.0 ? -1.0 / kappa : 1e300;
+    }
+    const double w = std::abs(rho) > 1e9 ? flat_step(r, h)
+                     : (rho < 0.0 && -rho <= r) ? 0.0
+                                                : contact_step(r, h, rho);
+    if (w > 0.0 && h > 0.0) {
+      report.ideal_length += weights[i] / w;
+    }
+  }
+  if (options.svg) {
+    SUBFEED_TRY(write_svg(*options.svg, points, heights, report.max_scallop, path));
+  }
+  return report;
+}
+
+} // namespace subfeed::geometry

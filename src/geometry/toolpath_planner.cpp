@@ -1,0 +1,345 @@
+#include "geometry/toolpath_planner.hpp"
+
+#include "geometry/mesh_slicer.hpp"
+#include "geometry/point_grid.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+#include <cmath>
+#include <numbers>
+
+namespace subfeed::geometry {
+
+namespace {
+
+constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along a pass
+
+double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::MoveKind kind,
+                   double feed) {
+  return {{tip.x(), tip.y(), tip.z()}, {axis.x(), axis.y(), axis.z()}, kind, feed, 0};
+}
+
+Eigen::Vector3d tip_of(const cl::ClPose& p) { return {p.tip[0], p.tip[1], p.tip[2]}; }
+Eigen::Vector3d axis_of(const cl::ClPose& p) { return {p.axis[0], p.axis[1], p.axis[2]}; }
+
+} // namespace
+
+ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh)
+    : options_(std::move(options)), mesh_(std::move(mesh)) {}
+
+Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const LimitSurface& surface,
+                                                   const PlanOptions& options) {
+  const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
+  const int rate = rate_for_tolerance(surface, chord, options.max_rate);
+  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rate));
+  ToolpathPlanner planner(options, std::move(mesh));
+  planner.chord_tolerance_ = chord;
+  const double a = options.direction_deg * std::numbers::pi / 180.0;
+  planner.feed_dir_ = {std::cos(a), std::sin(a), 0.0};
+  planner.s_ = Eigen::Vector3d::UnitZ().cross(planner.feed_dir_);
+  const auto& m = planner.mesh_;
+  const double r = options.ball_radius;
+  for (int i = 0; i < m.vertex_count(); ++i) {
+    planner.cl_points_.push_back(m.points[static_cast<std::size_t>(i)] +
+                                 r * m.normals[static_cast<std::size_t>(i)]);
+  }
+  for (const auto& t : m.triangles) {
+    const auto& p0 = m.points[static_cast<std::size_t>(t[0])];
+    const auto& p1 = m.points[static_cast<std::size_t>(t[1])];
+    const auto& p2 = m.points[static_cast<std::size_t>(t[2])];
+    planner.centroids_.push_back((p0 + p1 + p2) / 3.0);
+    planner.area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
+  }
+  const auto intervals = pass_intervals(m, r, options.scallop, planner.s_);
+  if (options.baseline) {
+    planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
+  } else {
+    SUBFEED_TRY_ASSIGN(planner.deformation_,
+                       deform_cl_mesh(planner.cl_points_, m.triangles, planner.s_, intervals,
+                                      options.refine_iterations));
+  }
+  auto& s = planner.summary_;
+  s.rate = rate;
+  s.mesh_vertices = m.vertex_count();
+  s.mesh_triangles = m.triangle_count();
+  s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
+  s.min_interval = intervals.min_interval;
+  s.max_interval = intervals.max_interval;
+  s.reference = planner.deformation_.reference;
+  s.solves = planner.deformation_.iterations;
+  s.worst_spacing_ratio = planner.deformation_.worst_ratio;
+  double top = -1e300;
+  double widest = 0.0;
+  for (std::size_t i = 0; i < planner.cl_points_.size(); ++i) {
+    top = std::max(top, planner.cl_points_[i].z() + r);
+    widest = std::max(widest, intervals.cl_spacing[i]);
+  }
+  planner.safe_z_ = top + options.clearance;
+  planner.link_distance_ = 2.0 * widest + options.clearance;
+  return planner;
+}
+
+void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const {
+  if (options_.fixed_axis) {
+    for (auto& p : pass) {
+      p.axis = Eigen::Vector3d::UnitZ();
+    }
+    return;
+  }
+  const double zeta = options_.axis_radius.value_or(options_.ball_radius);
+  for (auto& p : pass) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    triangles.within(p.contact, zeta, [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
+    p.axis = sum.norm() > 0.0 ? sum.normalized() : p.normal;
+  }
+  // Smoothed along the pass ([1 2 1] twice) so the rotary axes move calmly.
+  for (int round = 0; round < 2 && pass.size() > 2; ++round) {
+    std::vector<Eigen::Vector3d> next(pass.size());
+    next.front() = pass.front().axis;
+    next.back() = pass.back().axis;
+    for (std::size_t i = 1; i + 1 < pass.size(); ++i) {
+      next[i] = (pass[i - 1].axis + 2.0 * pass[i].axis + pass[i + 1].axis).normalized();
+    }
+    for (std::size_t i = 0; i < pass.size(); ++i) {
+      pass[i].axis = next[i];
+    }
+  }
+}
+
+std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& pass) const {
+  const double tol = options_.tolerance.value_or(chord_tolerance_);
+  std::vector<std::size_t> kept{0};
+  std::size_t anchor = 0;
+  for (std::size_t j = 2; j < pass.size(); ++j) {
+    bool fits = true;
+    for (std::size_t k = anchor + 1; k < j && fits; ++k) {
+      // Ball centres, not tips: the centre path is what decides the cut.
+      fits = segment_distance(pass[k].centre, pass[anchor].centre, pass[j].centre) <= tol;
+      const double t = static_cast<double>(k - anchor) / static_cast<double>(j - anchor);
+      const Eigen::Vector3d mid = ((1 - t) * pass[anchor].axis + t * pass[j].axis).normalized();
+      fits = fits && std::acos(std::clamp(mid.dot(pass[k].axis), -1.0, 1.0)) <= axis_tolerance_rad;
+    }
+    if (!fits) {
+      anchor = j - 1;
+      kept.push_back(anchor);
+    }
+  }
+  if (pass.size() > 1) {
+    kept.push_back(pass.size() - 1);
+  }
+  return kept;
+}
+
+Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
+  if (last_) {
+    const double d = (tip_of(pose) - tip_of(*last_)).norm();
+    (pose.kind == cl::MoveKind::feed ? summary_.cut_length : summary_.link_length) += d;
+  }
+  last_ = pose;
+  return sink(pose);
+}
+
+Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sink) {
+  const Eigen::Vector3d above_start = tip_of(start) + options_.clearance * axis_of(start);
+  if (last_) {
+    const Eigen::Vector3d above_end = tip_of(*last_) + options_.clearance * axis_of(*last_);
+    const Eigen::Vector3d end_axis = axis_of(*last_);
+    SUBFEED_TRY(put(pose_at(above_end, end_axis, cl::MoveKind::retract, options_.feed), sink));
+    if ((above_end - above_start).norm() > link_distance_) {
+      SUBFEED_TRY(put(pose_at({above_end.x(), above_end.y(), safe_z_}, end_axis,
+                              cl::MoveKind::rapid, 0.0),
+                      sink));
+      SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
+                              cl::MoveKind::rapid, 0.0),
+                      sink));
+    }
+  } else {
+    SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
+                            cl::MoveKind::rapid, 0.0),
+                    sink));
+  }
+  SUBFEED_TRY(put(pose_at(above_start, axis_of(start), cl::MoveKind::rapid, 0.0), sink));
+  auto plunge = start;
+  plunge.kind = cl::MoveKind::plunge;
+  plunge.feed = options_.plunge_feed;
+  return put(plunge, sink);
+}
+
+Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, const Sink& sink) {
+  const auto kept = reduce(pass);
+  const auto pose = [&](std::size_t i) {
+    const auto& p = pass[kept[i]];
+    return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
+                   options_.feed);
+  };
+  SUBFEED_TRY(link_to(pose(0), sink));
+  for (std::size_t i = 1; i < kept.size(); ++i) {
+    SUBFEED_TRY(put(pose(i), sink));
+  }
+  summary_.points += static_cast<long>(kept.size());
+  ++summary_.passes;
+  return {};
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::boundary_passes(const PointGrid& design, double reach2) {
+  // Edges of one triangle only, in that triangle's winding, chained end to start.
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : mesh_.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::unordered_map<int, int> next;
+  for (const auto& t : mesh_.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1) {
+        next[a] = b;
+      }
+    }
+  }
+  std::vector<std::vector<PassPoint>> passes;
+  while (!next.empty()) {
+    int v = next.begin()->first;
+    std::vector<int> chain{v};
+    while (true) {
+      const auto it = next.find(v);
+      if (it == next.end()) {
+        break;
+      }
+      v = it->second;
+      next.erase(it);
+      chain.push_back(v);
+    }
+    std::vector<PassPoint> run;
+    const auto flush = [&] {
+      if (run.size() >= 2) {
+        passes.push_back(std::move(run));
+      }
+      run.clear();
+    };
+    const auto gouges = [&](const Eigen::Vector3d& centre, double limit2) {
+      bool inside = false;
+      design.within(centre, options_.ball_radius, [&](int w) {
+        inside = inside || (mesh_.points[static_cast<std::size_t>(w)] - centre).squaredNorm() < limit2;
+      });
+      return inside;
+    };
+    // A chord between neighbouring CL points sags into a convex boundary by about the mesh
+    // tolerance; only a sag several times that is a turn the ball cannot follow.
+    const double r = options_.ball_radius;
+    const double sag2 = std::pow(r - 4.0 * (r - std::sqrt(reach2)), 2);
+    for (const int i : chain) {
+      const auto u = static_cast<std::size_t>(i);
+      PassPoint p{cl_points_[u], mesh_.points[u], mesh_.normals[u], mesh_.normals[u]};
+      // Where the boundary turns sharply the ball between two safe points can still cut in.
+      if (!run.empty() && gouges(0.5 * (run.back().centre + p.centre), sag2)) {
+        flush();
+      }
+      if (gouges(p.centre, reach2)) {
+        ++summary_.trimmed_points;
+        flush();
+        continue;
+      }
+      run.push_back(p);
+    }
+    flush();
+  }
+  return passes;
+}
+
+Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
+  MeshSlicer slicer(mesh_.triangles, deformation_.deformed);
+  const double ref = deformation_.reference;
+  const double range = slicer.max_value() - slicer.min_value();
+  // The outermost planes run along the extremes of the surface (a hair inside, so they cut
+  // it), the others evenly between them no farther apart than the reference.
+  const double inset = 1e-6 * std::max(range, 1.0);
+  const long planes = std::max(2L, static_cast<long>(std::ceil((range - 2 * inset) / ref)) + 1);
+  const double first = slicer.min_value() + inset;
+  const double step = (range - 2 * inset) / static_cast<double>(planes - 1);
+  summary_.planes = planes;
+  const PointGrid design(mesh_.points, options_.ball_radius);
+  const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
+  const double slack = 2.0 * chord_tolerance_ + 1e-6;
+  const double reach2 = std::pow(options_.ball_radius - slack, 2);
+  for (long k = 0; k < planes; ++k) {
+    if (progress) {
+      progress(k, planes);
+    }
+    auto lines = slicer.slice(first + static_cast<double>(k) * step);
+    // Along the feed direction, and every other plane the other way round for zig-zag.
+    std::vector<std::vector<PassPoint>> passes;
+    for (const auto& line : lines) {
+      std::vector<PassPoint> run;
+      const auto flush = [&] {
+        if (run.size() >= 2) {
+          passes.push_back(std::move(run));
+        }
+        run.clear();
+      };
+      for (const auto& e : line) {
+        const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
+        PassPoint p;
+        p.centre = (1 - e.t) * cl_points_[a] + e.t * cl_points_[b];
+        p.contact = (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b];
+        p.normal = ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized();
+        bool inside = false;
+        design.within(p.centre, options_.ball_radius, [&](int v) {
+          inside = inside || (mesh_.points[static_cast<std::size_t>(v)] - p.centre).squaredNorm() < reach2;
+        });
+        if (inside) {
+          ++summary_.trimmed_points;
+          flush();
+          continue;
+        }
+        run.push_back(p);
+      }
+      flush();
+    }
+    for (auto& pass : passes) {
+      if ((pass.back().centre - pass.front().centre).dot(feed_dir_) < 0.0) {
+        std::ranges::reverse(pass);
+      }
+    }
+    std::ranges::sort(passes, [&](const auto& x, const auto& y) {
+      return x.front().centre.dot(feed_dir_) < y.front().centre.dot(feed_dir_);
+    });
+    if (options_.zigzag && k % 2 == 1) {
+      std::ranges::reverse(passes);
+      for (auto& pass : passes) {
+        std::ranges::reverse(pass);
+      }
+    }
+    for (auto& pass : passes) {
+      set_axes(pass, triangles);
+      SUBFEED_TRY(emit_pass(pass, sink));
+    }
+  }
+  // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
+  // at an angle and leave a strip beside it that no neighbour pass covers.
+  for (auto& pass : boundary_passes(design, reach2)) {
+    set_axes(pass, triangles);
+    SUBFEED_TRY(emit_pass(pass, sink));
+  }
+  if (last_) {
+    const Eigen::Vector3d above = tip_of(*last_) + options_.clearance * axis_of(*last_);
+    SUBFEED_TRY(put(pose_at(above, axis_of(*last_), cl::MoveKind::retract, options_.feed), sink));
+    SUBFEED_TRY(put(pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
+  }
+  return {};
+}
+
+} // namespace subfeed::geometry
