@@ -78,11 +78,10 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_obj(o.cage));
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.level));
   SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(cage, surface, options));
-  const std::string output = o.output.empty()
-                                 ? std::filesystem::path(o.cage).replace_extension(".cl").string()
-                                 : o.output;
-  cl::ClHeader header{std::filesystem::path(o.cage).stem().string(), {2 * radius, radius},
-                      !options.fixed_axis};
+  const std::string output =
+      o.output.empty() ? std::filesystem::path(o.cage).replace_extension(".cl").string() : o.output;
+  cl::ClHeader header{
+      std::filesystem::path(o.cage).stem().string(), {2 * radius, radius}, !options.fixed_axis};
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
   SUBFEED_TRY(planner.run(
@@ -109,9 +108,10 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                        s.mesh_vertices, s.mesh_triangles, s.rate, s.min_interval, s.max_interval,
                        s.planes, s.reference, s.solves, s.worst_spacing_ratio));
   if (s.unreachable_vertices > 0 || s.trimmed_points > 0) {
-    log.warning(fmt::format("  the ball cannot reach {} surface vertices (hollows narrower than the "
-                         "ball); {} CL points dropped there",
-                         s.unreachable_vertices, s.trimmed_points));
+    log.warning(
+        fmt::format("  the ball cannot reach {} surface vertices (hollows narrower than the "
+                    "ball); {} CL points dropped there",
+                    s.unreachable_vertices, s.trimmed_points));
   }
   return {};
 }
@@ -121,21 +121,27 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
 void add_plan_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<PlanCommandOptions>();
   CLI::App* cmd = app.add_subcommand("plan", "Plan constant-scallop finishing passes on a cage");
-  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")->required()->type_name("CAGE.obj");
+  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+      ->required()
+      ->type_name("CAGE.obj");
   cmd->add_option("--tool", o->tool, "Cutter: ball:D (diameter D mm)")->required();
   cmd->add_option("--scallop", o->scallop, "Scallop height target, mm")->required();
   cmd->add_option("--direction", o->direction, "Feed direction: x, y or degrees from X");
   cmd->add_flag("--baseline", o->baseline, "Constant-interval iso-planar passes for comparison");
-  cmd->add_option("--axis-radius", o->axis_radius, "Tool axis averaging radius zeta, mm (default: ball radius)")
+  cmd->add_option("--axis-radius", o->axis_radius,
+                  "Tool axis averaging radius zeta, mm (default: ball radius)")
       ->check(CLI::Range(1e-3, 1000.0));
-  cmd->add_option("--axis", o->axis, "Tool axis: normal (five axes) or fixed (vertical, three axes)")
+  cmd->add_option("--axis", o->axis,
+                  "Tool axis: normal (five axes) or fixed (vertical, three axes)")
       ->check(CLI::IsMember({"normal", "fixed"}));
   cmd->add_flag("--one-way", o->one_way, "Cut every pass in the same direction (default zig-zag)");
   cmd->add_option("--feed", o->feed, "Cutting feed, mm/min")->check(CLI::Range(1.0, 100000.0));
-  cmd->add_option("--plunge-feed", o->plunge_feed, "Plunge feed, mm/min")->check(CLI::Range(1.0, 100000.0));
+  cmd->add_option("--plunge-feed", o->plunge_feed, "Plunge feed, mm/min")
+      ->check(CLI::Range(1.0, 100000.0));
   cmd->add_option("--clearance", o->clearance, "Retract along the tool axis between passes, mm")
       ->check(CLI::Range(0.01, 1000.0));
-  cmd->add_option("--tolerance", o->tolerance, "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
+  cmd->add_option("--tolerance", o->tolerance,
+                  "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));

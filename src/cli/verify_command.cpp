@@ -41,10 +41,10 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const auto r, geometry::verify_path(surface, o.cl, options));
   log.info(fmt::format("{} on {}: {} samples over {:.2f} mm^2 ({} not reached by the ball)", o.cl,
                        o.cage, r.samples, r.area, r.uncut_samples));
-  log.info(fmt::format("  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
-                       "percentile {:.6f} mm",
-                       r.max_scallop, r.max_at.x(), r.max_at.y(), r.max_at.z(), r.mean_scallop,
-                       r.p99_scallop));
+  log.info(fmt::format(
+      "  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
+      "percentile {:.6f} mm",
+      r.max_scallop, r.max_at.x(), r.max_at.y(), r.max_at.z(), r.mean_scallop, r.p99_scallop));
   log.info(fmt::format("  gouges {} samples, deepest {:.6f} mm{}", r.gouges, r.max_gouge,
                        r.gouges > 0 ? fmt::format(" (near {:.3f}, {:.3f}, {:.3f})", r.gouge_at.x(),
                                                   r.gouge_at.y(), r.gouge_at.z())
@@ -64,12 +64,16 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
 void add_verify_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<VerifyCommandOptions>();
   CLI::App* cmd = app.add_subcommand("verify", "Measure the scallop and gouges a CL path leaves");
-  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")->required()->type_name("CAGE.obj");
+  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+      ->required()
+      ->type_name("CAGE.obj");
   cmd->add_option("cl", o->cl, "CL data")->required()->type_name("PART.cl");
   cmd->add_option("--tool", o->tool, "Cutter: ball:D (diameter D mm)")->required();
-  cmd->add_option("--scallop", o->scallop, "Target for the ideal length L* (default: the measured maximum)")
+  cmd->add_option("--scallop", o->scallop,
+                  "Target for the ideal length L* (default: the measured maximum)")
       ->check(CLI::Range(1e-6, 100.0));
-  cmd->add_option("--spacing", o->spacing, "Sample spacing on the surface, mm (default: ball radius / 30)")
+  cmd->add_option("--spacing", o->spacing,
+                  "Sample spacing on the surface, mm (default: ball radius / 30)")
       ->check(CLI::Range(1e-4, 100.0));
   cmd->add_option("--svg", o->svg, "Write a top view of the passes over a scallop heat map");
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")

@@ -29,7 +29,8 @@ MeshSlicer::MeshSlicer(const std::vector<std::array<int, 3>>& triangles,
   tri_max_.resize(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
-    const double a = values[static_cast<std::size_t>(t[0])], b = values[static_cast<std::size_t>(t[1])],
+    const double a = values[static_cast<std::size_t>(t[0])],
+                 b = values[static_cast<std::size_t>(t[1])],
                  c = values[static_cast<std::size_t>(t[2])];
     tri_min_[i] = std::min({a, b, c});
     tri_max_[i] = std::max({a, b, c});

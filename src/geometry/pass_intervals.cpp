@@ -15,8 +15,8 @@ constexpr double flat_radius = 1e9;
 
 } // namespace
 
-PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h,
-                             const Eigen::Vector3d& s, double min_fraction) {
+PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h, const Eigen::Vector3d& s,
+                             double min_fraction) {
   PassIntervals out;
   const auto n_vertices = static_cast<std::size_t>(mesh.vertex_count());
   out.cl_spacing.resize(n_vertices);

@@ -63,7 +63,8 @@ Expected<Path> read_path(const std::filesystem::path& file, double r, VerifyRepo
 // Capsules by the cells of size r their boxes (grown by r) touch.
 class CapsuleGrid {
 public:
-  CapsuleGrid(const std::vector<Capsule>& capsules, double cell) : capsules_(&capsules), cell_(cell) {
+  CapsuleGrid(const std::vector<Capsule>& capsules, double cell)
+      : capsules_(&capsules), cell_(cell) {
     for (std::size_t i = 0; i < capsules.size(); ++i) {
       const auto& c = capsules[i];
       const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - c.radius;
@@ -185,7 +186,8 @@ double refine(Measurer& m, const Sample& s, double reach, double& gouge) {
   return std::max({s.height, f1, f2});
 }
 
-Expected<void> write_svg(const std::filesystem::path& file, const std::vector<Eigen::Vector3d>& points,
+Expected<void> write_svg(const std::filesystem::path& file,
+                         const std::vector<Eigen::Vector3d>& points,
                          const std::vector<double>& heights, double max_height, const Path& path) {
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& p : points) {
@@ -205,9 +207,10 @@ Expected<void> write_svg(const std::filesystem::path& file, const std::vector<Ei
     cell = std::max(cell, heights[i]);
   }
   SUBFEED_TRY_ASSIGN(auto out, AtomicOutputFile::create(file));
-  out.write(fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
-                        "height=\"{}\">\n<g shape-rendering=\"crispEdges\">\n",
-                        w * 3, h * 3 + 30, w * 3, h * 3 + 30));
+  out.write(
+      fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
+                  "height=\"{}\">\n<g shape-rendering=\"crispEdges\">\n",
+                  w * 3, h * 3 + 30, w * 3, h * 3 + 30));
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const double v = image[static_cast<std::size_t>(y * w + x)];
@@ -216,9 +219,10 @@ Expected<void> write_svg(const std::filesystem::path& file, const std::vector<Ei
       }
       // Blue (none) to red (the worst scallop); black where the ball cut below the surface.
       const double f = max_height > 0.0 ? std::clamp(v / max_height, 0.0, 1.0) : 0.0;
-      const auto colour = v == 0.0 ? std::string("#000") :
-          fmt::format("rgb({},{},{})", static_cast<int>(255 * f), static_cast<int>(80 * (1 - f)),
-                      static_cast<int>(255 * (1 - f)));
+      const auto colour =
+          v == 0.0 ? std::string("#000")
+                   : fmt::format("rgb({},{},{})", static_cast<int>(255 * f),
+                                 static_cast<int>(80 * (1 - f)), static_cast<int>(255 * (1 - f)));
       out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"3\" height=\"3\" fill=\"{}\"/>\n",
                             x * 3, (h - 1 - y) * 3, colour));
     }
@@ -323,7 +327,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       const double kappa = across->dot(curvature_matrix(*s) * *across);
       rho = kappa != 0.0 ? -1.0 / kappa : 1e300;
     }
-    const double w = std::abs(rho) > 1e9 ? flat_step(r, h)
+    const double w = std::abs(rho) > 1e9        ? flat_step(r, h)
                      : (rho < 0.0 && -rho <= r) ? 0.0
                                                 : contact_step(r, h, rho);
     if (w > 0.0 && h > 0.0) {

@@ -75,8 +75,9 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
       std::vector<int>* same_place = nullptr;
       if (static_cast<long>(k) < n * rate) {
         const long e = static_cast<long>(k) / rate, j = static_cast<long>(k) % rate;
-        const long v0 = loop[static_cast<std::size_t>(e)], v1 = loop[static_cast<std::size_t>((e + 1) % n)];
-        const std::array<long, 3> key = j == 0 ? std::array<long, 3>{v0, -1, 0}
+        const long v0 = loop[static_cast<std::size_t>(e)],
+                   v1 = loop[static_cast<std::size_t>((e + 1) % n)];
+        const std::array<long, 3> key = j == 0    ? std::array<long, 3>{v0, -1, 0}
                                         : v0 < v1 ? std::array<long, 3>{v0, v1, j}
                                                   : std::array<long, 3>{v1, v0, rate - j};
         same_place = &shared[key];

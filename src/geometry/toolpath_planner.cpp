@@ -5,10 +5,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <map>
-#include <unordered_map>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <unordered_map>
 
 namespace subfeed::geometry {
 
@@ -29,8 +29,12 @@ cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::
   return {{tip.x(), tip.y(), tip.z()}, {axis.x(), axis.y(), axis.z()}, kind, feed, 0};
 }
 
-Eigen::Vector3d tip_of(const cl::ClPose& p) { return {p.tip[0], p.tip[1], p.tip[2]}; }
-Eigen::Vector3d axis_of(const cl::ClPose& p) { return {p.axis[0], p.axis[1], p.axis[2]}; }
+Eigen::Vector3d tip_of(const cl::ClPose& p) {
+  return {p.tip[0], p.tip[1], p.tip[2]};
+}
+Eigen::Vector3d axis_of(const cl::ClPose& p) {
+  return {p.axis[0], p.axis[1], p.axis[2]};
+}
 
 } // namespace
 
@@ -99,7 +103,8 @@ void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& tr
   const double zeta = options_.axis_radius.value_or(options_.ball_radius);
   for (auto& p : pass) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    triangles.within(p.contact, zeta, [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
+    triangles.within(p.contact, zeta,
+                     [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
     p.axis = sum.norm() > 0.0 ? sum.normalized() : p.normal;
   }
   // Smoothed along the pass ([1 2 1] twice) so the rotary axes move calmly.
@@ -156,9 +161,9 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
     const Eigen::Vector3d end_axis = axis_of(*last_);
     SUBFEED_TRY(put(pose_at(above_end, end_axis, cl::MoveKind::retract, options_.feed), sink));
     if ((above_end - above_start).norm() > link_distance_) {
-      SUBFEED_TRY(put(pose_at({above_end.x(), above_end.y(), safe_z_}, end_axis,
-                              cl::MoveKind::rapid, 0.0),
-                      sink));
+      SUBFEED_TRY(
+          put(pose_at({above_end.x(), above_end.y(), safe_z_}, end_axis, cl::MoveKind::rapid, 0.0),
+              sink));
       SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
                               cl::MoveKind::rapid, 0.0),
                       sink));
@@ -189,6 +194,17 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
   summary_.points += static_cast<long>(kept.size());
   ++summary_.passes;
   return {};
+}
+
+// Whether a design vertex lies closer to the ball centre than sqrt(limit2): the ball would
+// cut below the surface there.
+bool ToolpathPlanner::ball_gouges(const PointGrid& design, const Eigen::Vector3d& centre,
+                                  double limit2) const {
+  bool inside = false;
+  design.within(centre, options_.ball_radius, [&](int v) {
+    inside = inside || (mesh_.points[static_cast<std::size_t>(v)] - centre).squaredNorm() < limit2;
+  });
+  return inside;
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
@@ -231,11 +247,7 @@ ToolpathPlanner::boundary_passes(const PointGrid& design, double reach2) {
       run.clear();
     };
     const auto gouges = [&](const Eigen::Vector3d& centre, double limit2) {
-      bool inside = false;
-      design.within(centre, options_.ball_radius, [&](int w) {
-        inside = inside || (mesh_.points[static_cast<std::size_t>(w)] - centre).squaredNorm() < limit2;
-      });
-      return inside;
+      return ball_gouges(design, centre, limit2);
     };
     // A chord between neighbouring CL points sags into a convex boundary by about the mesh
     // tolerance; only a sag several times that is a turn the ball cannot follow.
@@ -296,11 +308,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
         p.centre = (1 - e.t) * cl_points_[a] + e.t * cl_points_[b];
         p.contact = (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b];
         p.normal = ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized();
-        bool inside = false;
-        design.within(p.centre, options_.ball_radius, [&](int v) {
-          inside = inside || (mesh_.points[static_cast<std::size_t>(v)] - p.centre).squaredNorm() < reach2;
-        });
-        if (inside) {
+        if (ball_gouges(design, p.centre, reach2)) {
           ++summary_.trimmed_points;
           flush();
           continue;
@@ -337,7 +345,8 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   if (last_) {
     const Eigen::Vector3d above = tip_of(*last_) + options_.clearance * axis_of(*last_);
     SUBFEED_TRY(put(pose_at(above, axis_of(*last_), cl::MoveKind::retract, options_.feed), sink));
-    SUBFEED_TRY(put(pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
+    SUBFEED_TRY(put(
+        pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
   }
   return {};
 }

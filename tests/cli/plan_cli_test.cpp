@@ -25,15 +25,15 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
                                  "--tolerance", "0.002", "-o", cl});
   REQUIRE(plan.exit_code == 0);
   CHECK(plan.out.find("deformed CL surface") != std::string::npos);
-  const auto verify = run_process({bin, "verify", cage, cl, "--tool", "ball:6", "--scallop",
-                                   "0.03", "--spacing", "0.3", "--svg", svg});
+  const auto verify = run_process({bin, "verify", cage, cl, "--tool", "ball:6", "--scallop", "0.03",
+                                   "--spacing", "0.3", "--svg", svg});
   CHECK(verify.exit_code == 0);
   CHECK(verify.out.find("scallop max 0.03") != std::string::npos); // within 5 % of 0.03
   CHECK(std::filesystem::file_size(svg) > 1000);
   // What plan writes, post reads: a 5-axis path for the grblHAL trunnion.
-  const auto post = run_process({bin, "post", cl, "--machine",
-                                 source_dir + "/configs/grblhal-xyzac-trt.toml", "-o",
-                                 (dir.path() / "bowl.nc").string()});
+  const auto post =
+      run_process({bin, "post", cl, "--machine", source_dir + "/configs/grblhal-xyzac-trt.toml",
+                   "-o", (dir.path() / "bowl.nc").string()});
   CHECK(post.exit_code == 0);
 }
 
@@ -49,8 +49,8 @@ TEST_CASE("plan refuses a bad tool, scallop or cage in one line") {
   CHECK(scallop.err.find("--scallop: must be more than 0 and less than the ball radius") !=
         std::string::npos);
   const auto bad = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-  const auto cage_error = run_process({bin, "plan", bad.string(), "--tool", "ball:6",
-                                       "--scallop", "0.01", "-o", (dir.path() / "x.cl").string()});
+  const auto cage_error = run_process({bin, "plan", bad.string(), "--tool", "ball:6", "--scallop",
+                                       "0.01", "-o", (dir.path() / "x.cl").string()});
   CHECK(cage_error.exit_code == 2);
   CHECK(cage_error.err.starts_with("subfeed: error: " + bad.string() + ":4: "));
   CHECK_FALSE(std::filesystem::exists(dir.path() / "x.cl"));

@@ -48,8 +48,10 @@ TEST_CASE("curvature radii of the exact bowl and saddle at their centre") {
     REQUIRE(mesh);
     const int centre = nearest_vertex(*mesh, Eigen::Vector3d::Zero());
     REQUIRE(mesh->points[static_cast<std::size_t>(centre)].norm() < 1e-12);
-    CHECK(mesh->radius_along(centre, Eigen::Vector3d::UnitX()) == Approx(-1.0 / (2 * a)).epsilon(1e-9));
-    CHECK(mesh->radius_along(centre, Eigen::Vector3d::UnitY()) == Approx(-1.0 / (2 * b)).epsilon(1e-9));
+    CHECK(mesh->radius_along(centre, Eigen::Vector3d::UnitX()) ==
+          Approx(-1.0 / (2 * a)).epsilon(1e-9));
+    CHECK(mesh->radius_along(centre, Eigen::Vector3d::UnitY()) ==
+          Approx(-1.0 / (2 * b)).epsilon(1e-9));
   }
 }
 
@@ -68,7 +70,8 @@ TEST_CASE("slice points map back exactly: every point lies on its level and its 
     for (const auto& line : slicer.slice(level)) {
       REQUIRE(line.size() >= 2);
       for (const auto& e : line) {
-        const double va = values[static_cast<std::size_t>(e.a)], vb = values[static_cast<std::size_t>(e.b)];
+        const double va = values[static_cast<std::size_t>(e.a)],
+                     vb = values[static_cast<std::size_t>(e.b)];
         CHECK(e.t >= 0.0);
         CHECK(e.t <= 1.0);
         CHECK(std::abs((1 - e.t) * va + e.t * vb - level) < 1e-12);
@@ -79,7 +82,9 @@ TEST_CASE("slice points map back exactly: every point lies on its level and its 
   CHECK(points > 100);
 }
 
-TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um, shorter than the baseline", "[slow]") {
+TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um, shorter than the "
+          "baseline",
+          "[slow]") {
   TempDir dir;
   const auto cage = subfeed::testing::grid_cage(6, 5.0, 0.04, 0.01);
   const auto surface = surface_of(cage);

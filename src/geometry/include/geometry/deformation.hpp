@@ -27,10 +27,11 @@ struct Deformation {
   double worst_ratio = 0.0;     // largest measured/needed spacing after the last solve
 };
 
-[[nodiscard]] Expected<Deformation>
-deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
-               const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
-               const PassIntervals& intervals, int max_iterations = 6);
+[[nodiscard]] Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
+                                                   const std::vector<std::array<int, 3>>& triangles,
+                                                   const Eigen::Vector3d& s,
+                                                   const PassIntervals& intervals,
+                                                   int max_iterations = 6);
 
 // The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval.
 [[nodiscard]] Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points,

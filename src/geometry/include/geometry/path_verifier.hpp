@@ -21,23 +21,23 @@
 namespace subfeed::geometry {
 
 struct VerifyOptions {
-  double ball_radius = 3.0;                  // mm
-  std::optional<double> scallop_target;      // mm, for L*; default the measured maximum
-  double sample_spacing = 0.0;               // mm; 0: a quarter of the typical pass spacing
-  std::optional<std::filesystem::path> svg;  // top view over a scallop heat map
+  double ball_radius = 3.0;                 // mm
+  std::optional<double> scallop_target;     // mm, for L*; default the measured maximum
+  double sample_spacing = 0.0;              // mm; 0: a quarter of the typical pass spacing
+  std::optional<std::filesystem::path> svg; // top view over a scallop heat map
 };
 
 struct VerifyReport {
   long samples = 0;
   long uncut_samples = 0; // not reached by any ball within one radius above the surface
   double max_scallop = 0.0, mean_scallop = 0.0, p99_scallop = 0.0; // mm
-  Eigen::Vector3d max_at = Eigen::Vector3d::Zero(); // where the worst scallop is, mm
+  Eigen::Vector3d max_at = Eigen::Vector3d::Zero();                // where the worst scallop is, mm
   long gouges = 0;
-  double max_gouge = 0.0;  // mm
+  double max_gouge = 0.0;                             // mm
   Eigen::Vector3d gouge_at = Eigen::Vector3d::Zero(); // where the deepest gouge is
-  double path_length = 0.0, cutting_length = 0.0; // mm
+  double path_length = 0.0, cutting_length = 0.0;     // mm
   long passes = 0, points = 0;
-  double area = 0.0;       // mm^2 of the surface measured
+  double area = 0.0;         // mm^2 of the surface measured
   double ideal_length = 0.0; // L*, mm
 };
 

@@ -31,19 +31,19 @@
 namespace subfeed::geometry {
 
 struct PlanOptions {
-  double ball_radius = 3.0;            // mm
-  double scallop = 0.01;               // mm
-  double direction_deg = 0.0;          // feed direction in the XY plane, from +X
+  double ball_radius = 3.0;   // mm
+  double scallop = 0.01;      // mm
+  double direction_deg = 0.0; // feed direction in the XY plane, from +X
   bool baseline = false;
-  std::optional<double> axis_radius;   // zeta, mm; default: the ball radius
-  bool fixed_axis = false;             // vertical tool (three axes)
+  std::optional<double> axis_radius; // zeta, mm; default: the ball radius
+  bool fixed_axis = false;           // vertical tool (three axes)
   bool zigzag = true;
-  std::optional<double> tolerance;     // mm along a pass; default min(h/10, 0.4 um)
-  double feed = 1000.0;                // mm/min
-  double plunge_feed = 300.0;          // mm/min
-  double clearance = 2.0;              // mm, retract along the tool axis between passes
+  std::optional<double> tolerance; // mm along a pass; default min(h/10, 0.4 um)
+  double feed = 1000.0;            // mm/min
+  double plunge_feed = 300.0;      // mm/min
+  double clearance = 2.0;          // mm, retract along the tool axis between passes
   int refine_iterations = 6;
-  int max_rate = 96;                   // tessellation segments per cage face edge
+  int max_rate = 96; // tessellation segments per cage face edge
 };
 
 struct PlanSummary {
@@ -53,15 +53,15 @@ struct PlanSummary {
   long unreachable_vertices = 0;
   double min_interval = 0.0; // mm between planes, over the surface
   double max_interval = 0.0;
-  double reference = 0.0;    // plane spacing in deformed space
+  double reference = 0.0; // plane spacing in deformed space
   int solves = 0;
   double worst_spacing_ratio = 0.0; // measured/needed, after refinement
   long planes = 0;
-  long passes = 0;           // polylines cut
-  long points = 0;           // feed points written
-  long trimmed_points = 0;   // CL points dropped because the ball would gouge
-  double cut_length = 0.0;   // mm of feed moves along passes
-  double link_length = 0.0;  // mm of retracts, rapids and plunges
+  long passes = 0;          // polylines cut
+  long points = 0;          // feed points written
+  long trimmed_points = 0;  // CL points dropped because the ball would gouge
+  double cut_length = 0.0;  // mm of feed moves along passes
+  double link_length = 0.0; // mm of retracts, rapids and plunges
 };
 
 class ToolpathPlanner {
@@ -70,9 +70,8 @@ public:
   using Progress = std::function<void(long plane, long planes)>;
 
   // Meshes, offsets, computes intervals and solves the deformation.
-  [[nodiscard]] static Expected<ToolpathPlanner> prepare(const Cage& cage,
-                                                         const LimitSurface& surface,
-                                                         const PlanOptions& options);
+  [[nodiscard]] static Expected<ToolpathPlanner>
+  prepare(const Cage& cage, const LimitSurface& surface, const PlanOptions& options);
   // Slices plane after plane and hands every pose to `sink` as soon as its pass is done.
   [[nodiscard]] Expected<void> run(const Sink& sink, const Progress& progress = {});
 
@@ -86,7 +85,9 @@ private:
   };
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design,
-                                                                   double reach2);
+                                                                    double reach2);
+  [[nodiscard]] bool ball_gouges(const PointGrid& design, const Eigen::Vector3d& centre,
+                                 double limit2) const;
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink);
