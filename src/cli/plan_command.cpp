@@ -31,6 +31,7 @@ struct PlanCommandOptions {
   double clearance = 2.0;
   double tolerance = 0.0;
   int level = geometry::min_approx_level;
+  int refine = 60;
   std::string output;
 };
 
@@ -72,6 +73,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   options.feed = o.feed;
   options.plunge_feed = o.plunge_feed;
   options.clearance = o.clearance;
+  options.refine_iterations = o.refine;
   if (o.tolerance > 0.0) {
     options.tolerance = o.tolerance;
   }
@@ -145,6 +147,8 @@ void add_plan_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
+  cmd->add_option("--refine", o->refine, "Most deformation solves while measured spacing exceeds the need")
+      ->check(CLI::Range(1, 100));
   cmd->add_option("-o,--output", o->output, "CL data to write (default: CAGE.cl)");
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_plan(*o, log); }; });
 }

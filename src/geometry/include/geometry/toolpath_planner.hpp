@@ -42,7 +42,7 @@ struct PlanOptions {
   double feed = 1000.0;            // mm/min
   double plunge_feed = 300.0;      // mm/min
   double clearance = 2.0;          // mm, retract along the tool axis between passes
-  int refine_iterations = 6;
+  int refine_iterations = 60;
   int max_rate = 96; // tessellation segments per cage face edge
 };
 
