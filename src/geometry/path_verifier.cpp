@@ -1,6 +1,7 @@
 #include "geometry/path_verifier.hpp"
 
 #include "base/atomic_output_file.hpp"
+#include "geometry/point_grid.hpp"
 #include "geometry/scallop_meter.hpp"
 #include "geometry/step_over.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -69,11 +70,11 @@ public:
       const auto& c = capsules[i];
       const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - c.radius;
       const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + c.radius;
-      const auto a = cell_of(lo), b = cell_of(hi);
+      const auto a = grid_cell(lo, cell_), b = grid_cell(hi, cell_);
       for (long long x = a[0]; x <= b[0]; ++x) {
         for (long long y = a[1]; y <= b[1]; ++y) {
           for (long long z = a[2]; z <= b[2]; ++z) {
-            cells_[key(x, y, z)].push_back(static_cast<int>(i));
+            cells_[grid_cell_key(x, y, z)].push_back(static_cast<int>(i));
           }
         }
       }
@@ -81,8 +82,8 @@ public:
   }
   void near(const Eigen::Vector3d& p, std::vector<Capsule>& out) const {
     out.clear();
-    const auto c = cell_of(p);
-    const auto found = cells_.find(key(c[0], c[1], c[2]));
+    const auto c = grid_cell(p, cell_);
+    const auto found = cells_.find(grid_cell_key(c[0], c[1], c[2]));
     if (found != cells_.end()) {
       for (const int i : found->second) {
         out.push_back((*capsules_)[static_cast<std::size_t>(i)]);
@@ -91,15 +92,6 @@ public:
   }
 
 private:
-  std::array<long long, 3> cell_of(const Eigen::Vector3d& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)),
-            static_cast<long long>(std::floor(p.y() / cell_)),
-            static_cast<long long>(std::floor(p.z() / cell_))};
-  }
-  static std::uint64_t key(long long x, long long y, long long z) {
-    const auto part = [](long long v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
-    return part(x) << 42 | part(y) << 21 | part(z);
-  }
   const std::vector<Capsule>* capsules_;
   double cell_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
@@ -124,6 +116,17 @@ std::optional<Eigen::Vector3d> across_nearest(const Eigen::Vector3d& p, const Ei
     }
   }
   return out;
+}
+
+// Signed radius of normal curvature across the nearest pass; "infinite" (1e300) where no
+// pass is near or the surface is flat that way.
+double radius_across(const LimitSample& s, const std::vector<Capsule>& near) {
+  const auto across = across_nearest(s.point, s.normal, near);
+  if (!across) {
+    return 1e300;
+  }
+  const double kappa = across->dot(curvature_matrix(s) * *across);
+  return kappa != 0.0 ? -1.0 / kappa : 1e300;
 }
 
 struct Sample {
@@ -258,6 +261,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
   std::vector<Sample> samples;
   std::vector<Eigen::Vector3d> points;
   std::vector<double> weights;
+  std::vector<double> radii; // of normal curvature across the nearest pass, for L*
   for (int f = 0; f < surface.face_count(); ++f) {
     if (!surface.has_patch(f)) {
       continue;
@@ -287,6 +291,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       }
       samples.push_back({f, uv.x(), uv.y(), h.height});
       points.push_back(s->point);
+      radii.push_back(radius_across(*s, m.near));
       // Each sample stands for the area of one parameter cell of the face.
       weights.push_back(s->du.cross(s->dv).norm() / (static_cast<double>(rate) * rate));
     }
@@ -319,14 +324,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
   const double h = options.scallop_target.value_or(report.max_scallop);
   for (std::size_t i = 0; i < samples.size(); ++i) {
     report.area += weights[i];
-    const auto s = surface.evaluate_regular(samples[i].face, samples[i].u, samples[i].v);
-    grid.near(s->point, m.near);
-    const auto across = across_nearest(s->point, s->normal, m.near);
-    double rho = 1e300;
-    if (across) {
-      const double kappa = across->dot(curvature_matrix(*s) * *across);
-      rho = kappa != 0.0 ? -1.0 / kappa : 1e300;
-    }
+    const double rho = radii[i];
     const double w = std::abs(rho) > 1e9        ? flat_step(r, h)
                      : (rho < 0.0 && -rho <= r) ? 0.0
                                                 : contact_step(r, h, rho);
