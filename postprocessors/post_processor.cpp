@@ -161,6 +161,12 @@ Expected<void> PostProcessor::rapid_words(const JointPosition& target,
   return emit(block);
 }
 
+Expected<void> PostProcessor::up_to_safe_z(long line) {
+  JointPosition up{};
+  up[2] = safe_z();
+  return rapid_words(up, {2}, line);
+}
+
 PostProcessor::Placed PostProcessor::offset_along_axis(const Placed& at, double distance) const {
   Placed out = at;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -178,9 +184,7 @@ Expected<void> PostProcessor::position(const Placed& target, bool feed_in) {
     turns = turns || std::abs(machine_at_[r] - above.joints[r]) > moved;
   }
   if (turns) {
-    JointPosition up = machine_at_;
-    up[2] = safe_z();
-    SUBFEED_TRY(rapid_words(up, {2}, line));
+    SUBFEED_TRY(up_to_safe_z(line));
     SUBFEED_TRY(rapid_words(above.joints, {3, 4, 5}, line));
     SUBFEED_TRY(rapid_words(above.joints, {0, 1}, line));
   }
@@ -202,14 +206,7 @@ Expected<void> PostProcessor::retract(const Placed& from) {
   if (away.joints[2] < safe_z()) {
     SUBFEED_TRY(cut_segment(from, away, true));
   }
-  JointPosition up = machine_at_;
-  up[2] = safe_z();
-  MotionBlock block;
-  block.motion = Motion::rapid;
-  block.cl_line = from.pose.line;
-  block.link = true;
-  block.axes[2] = up[2];
-  return emit(block);
+  return up_to_safe_z(from.pose.line);
 }
 
 bool PostProcessor::within_tolerance(const Placed& from, const Placed& to) const {
@@ -319,10 +316,6 @@ double PostProcessor::block_minutes(const Placed& a, const Placed& b) const {
   return minutes;
 }
 
-Expected<void> PostProcessor::cut(const Placed& from, const Placed& to) {
-  return cut_segment(from, to, false);
-}
-
 Expected<void> PostProcessor::add(const cl::ClPose& pose) {
   ++stats_.poses;
   if (!last_) {
@@ -351,9 +344,9 @@ Expected<void> PostProcessor::add(const cl::ClPose& pose) {
     const Placed again{last_->pose,
                        tracker_.nearest({last_->pose.tip, last_->pose.axis}, step.joints)};
     SUBFEED_TRY(position(again, true));
-    SUBFEED_TRY(cut(again, next));
+    SUBFEED_TRY(cut_segment(again, next, false));
   } else {
-    SUBFEED_TRY(cut(*last_, next));
+    SUBFEED_TRY(cut_segment(*last_, next, false));
   }
   last_ = next;
   return {};
@@ -364,7 +357,7 @@ Expected<void> PostProcessor::finish() {
     return retract(*last_);
   }
   if (last_) {
-    return rapid_words({0, 0, safe_z(), 0, 0, 0}, {2}, last_->pose.line);
+    return up_to_safe_z(last_->pose.line);
   }
   return {};
 }

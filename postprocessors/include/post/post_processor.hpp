@@ -68,7 +68,7 @@ private:
                                            std::initializer_list<std::size_t> axes, long line);
   [[nodiscard]] Expected<void> position(const Placed& target, bool feed_in);
   [[nodiscard]] Expected<void> retract(const Placed& from);
-  [[nodiscard]] Expected<void> cut(const Placed& from, const Placed& to);
+  [[nodiscard]] Expected<void> up_to_safe_z(long line);
   [[nodiscard]] Expected<void> cut_segment(const Placed& from, const Placed& to, bool link);
   [[nodiscard]] bool within_tolerance(const Placed& from, const Placed& to) const;
   [[nodiscard]] Placed midpoint(const Placed& from, const Placed& to) const;
