@@ -32,7 +32,8 @@ TEST_CASE("the front answers --version and --help with exit 0") {
 }
 
 TEST_CASE("every subcommand has --help") {
-  for (const std::string cmd : {"inspect", "plan", "verify", "config", "send", "ports", "post", "check"}) {
+  for (const std::string cmd :
+       {"inspect", "plan", "verify", "config", "send", "ports", "post", "check"}) {
     INFO(cmd);
     const auto help = run_process({bin, cmd, "--help"});
     CHECK(help.exit_code == 0);

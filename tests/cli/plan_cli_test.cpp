@@ -55,3 +55,12 @@ TEST_CASE("plan refuses a bad tool, scallop or cage in one line") {
   CHECK(cage_error.err.starts_with("subfeed: error: " + bad.string() + ":4: "));
   CHECK_FALSE(std::filesystem::exists(dir.path() / "x.cl"));
 }
+
+TEST_CASE("verify refuses CL data without a cutting move") {
+  TempDir dir;
+  const auto cl = dir.write("rapid.cl", "UNITS/MM\nCUTTER/6,3\nRAPID\nGOTO/0,0,10\nFINI\n");
+  const auto r = run_process(
+      {bin, "verify", source_dir + "/examples/plane.obj", cl.string(), "--tool", "ball:6"});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err == "subfeed: error: " + cl.string() + ": no cutting moves in the CL data\n");
+}

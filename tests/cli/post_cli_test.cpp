@@ -74,3 +74,24 @@ TEST_CASE("post refuses bad input in one line, exit 2, and writes nothing") {
   CHECK(tcp.exit_code != 0);
   CHECK_FALSE(std::filesystem::exists(nc));
 }
+
+TEST_CASE("check refuses what it cannot replay, naming the line, and needs the trace map") {
+  TempDir dir;
+  const auto config = source_dir + "/configs/grbl-router-3axis.toml";
+  const auto arc = dir.write("arc.nc", "G21 G90\nG0 X0 Y0 Z5\nG2 X10 Y0 I5 J0 F100\n");
+  const auto r = run_process({bin, "check", arc.string(), "--machine", config});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err == "subfeed: error: " + arc.string() +
+                     ":3: G2 is not understood by check (arcs, cycles, inches and incremental "
+                     "moves are not replayed)\n");
+  const auto no_feed = dir.write("nofeed.nc", "G0 X0 Y0 Z5\nG1 X10\n");
+  const auto f = run_process({bin, "check", no_feed.string(), "--machine", config});
+  CHECK(f.exit_code == 2);
+  CHECK(f.err == "subfeed: error: " + no_feed.string() + ":2: feed move without a feed rate (F)\n");
+  const auto no_map = run_process({bin, "check", no_feed.string(), "--machine", config, "--cl",
+                                   source_dir + "/examples/bowl-raster.cl"});
+  CHECK(no_map.exit_code == 2);
+  CHECK(no_map.err == "subfeed: error: " + no_feed.string() +
+                          ".map: comparing with CL data needs the trace map subfeed post writes "
+                          "beside the program\n");
+}
