@@ -49,6 +49,8 @@ Expected<void> inspect(const InspectOptions& options, Logger& log) {
     log.info(fmt::format("  {} {:10.4f} .. {:10.4f} mm  (size {:.4f} mm)", "XYZ"[axis], s.min[axis],
                          s.max[axis], s.max[axis] - s.min[axis]));
   }
+  log.info(fmt::format("  steepest slope {:.1f} deg from horizontal (near {:.3f}, {:.3f}, {:.3f})",
+                       s.steepest_deg, s.steepest_at.x(), s.steepest_at.y(), s.steepest_at.z()));
   return {};
 }
 

@@ -104,16 +104,24 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,
                        s.passes, s.points, s.cut_length, s.link_length,
                        o.baseline ? "iso-planar baseline" : "deformed CL surface"));
-  log.info(fmt::format("  mesh {} vertices, {} triangles (rate {}); plane interval {:.4f}..{:.4f} "
-                       "mm; {} planes of {:.4f} mm in deformed space; {} solves, worst spacing "
-                       "ratio {:.3f}",
+  log.info(fmt::format("  mesh {} vertices, {} triangles (up to {} segments a cage edge); plane "
+                       "interval {:.4f}..{:.4f} mm; {} planes {:.4f} mm apart{}",
                        s.mesh_vertices, s.mesh_triangles, s.rate, s.min_interval, s.max_interval,
-                       s.planes, s.reference, s.solves, s.worst_spacing_ratio));
-  if (s.unreachable_vertices > 0 || s.trimmed_points > 0) {
+                       s.planes, s.reference, o.baseline ? "" : " in deformed space"));
+  if (!o.baseline) {
+    log.info(fmt::format("  deformation: solve {} of {} kept (the shortest path), pass spacing up "
+                         "to {:.3f} of the need{}",
+                         s.chosen_solve, s.solves, s.worst_spacing_ratio,
+                         s.inserted_depth > 0
+                             ? fmt::format("; passes inserted there down to 1/{} of a plane step",
+                                           1 << s.inserted_depth)
+                             : std::string()));
+  }
+  if (s.unreachable_vertices > 0 || s.lifted_points > 0) {
     log.warning(
         fmt::format("  the ball cannot reach {} surface vertices (hollows narrower than the "
-                    "ball); {} CL points dropped there",
-                    s.unreachable_vertices, s.trimmed_points));
+                    "ball); {} CL points lifted clear there, leaving material",
+                    s.unreachable_vertices, s.lifted_points));
   }
   return {};
 }

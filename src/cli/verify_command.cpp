@@ -1,4 +1,4 @@
-// `subfeed verify CAGE.obj PART.cl --tool ball:D [--svg out.svg]`: the independent scallop
+// `subfeed verify CAGE.obj PART.cl --tool ball:D [--svg out.svg] [--png out.png]`: the independent scallop
 // measurement of a path on its surface (geometry/path_verifier.hpp).
 
 #include "command.hpp"
@@ -22,6 +22,7 @@ struct VerifyCommandOptions {
   double scallop = 0.0;
   double spacing = 0.0;
   std::string svg;
+  std::string png;
   int level = geometry::min_approx_level;
 };
 
@@ -38,6 +39,9 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   if (!o.svg.empty()) {
     options.svg = o.svg;
   }
+  if (!o.png.empty()) {
+    options.png = o.png;
+  }
   SUBFEED_TRY_ASSIGN(const auto r, geometry::verify_path(surface, o.cl, options));
   log.info(fmt::format("{} on {}: {} samples over {:.2f} mm^2 ({} not reached by the ball)", o.cl,
                        o.cage, r.samples, r.area, r.uncut_samples));
@@ -45,7 +49,7 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
       "  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
       "percentile {:.6f} mm",
       r.max_scallop, r.max_at.x(), r.max_at.y(), r.max_at.z(), r.mean_scallop, r.p99_scallop));
-  log.info(fmt::format("  gouges {} samples, deepest {:.6f} mm{}", r.gouges, r.max_gouge,
+  log.info(fmt::format("  gouges {} samples deeper than 0.1 um, deepest {:.6f} mm{}", r.gouges, r.max_gouge,
                        r.gouges > 0 ? fmt::format(" (near {:.3f}, {:.3f}, {:.3f})", r.gouge_at.x(),
                                                   r.gouge_at.y(), r.gouge_at.z())
                                     : std::string()));
@@ -53,8 +57,11 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        "L/L* {:.3f}",
                        r.path_length, r.cutting_length, r.passes, r.points, r.ideal_length,
                        r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
-  if (!o.svg.empty()) {
-    log.info("  picture: " + o.svg);
+  for (const auto& picture : {o.svg, o.png}) {
+    if (!picture.empty()) {
+      log.info("  picture: " + picture +
+               " (top view; scallop blue = 0 to red = max, black = gouge over 1 um, white = passes)");
+    }
   }
   return {};
 }
@@ -76,6 +83,7 @@ void add_verify_command(CLI::App& app, Action& chosen) {
                   "Sample spacing on the surface, mm (default: ball radius / 30)")
       ->check(CLI::Range(1e-4, 100.0));
   cmd->add_option("--svg", o->svg, "Write a top view of the passes over a scallop heat map");
+  cmd->add_option("--png", o->png, "Write the same picture as PNG");
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_verify(*o, log); }; });

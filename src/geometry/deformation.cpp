@@ -1,8 +1,12 @@
 #include "geometry/deformation.hpp"
 
+#include "geometry/pass_insertion.hpp"
+
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace subfeed::geometry {
@@ -56,48 +60,38 @@ std::vector<int> anchors(int n, const std::vector<Edge>& edges, const std::vecto
   return out;
 }
 
-// Spacing between xi' level lines on each triangle over the spacing its vertices need;
-// raises eta on the vertices of triangles where it is too wide. Returns the worst ratio.
+// Raises eta on the vertices of triangles whose passes lie too far apart, a little past the
+// measured ratio so the solves converge from above. Returns the worst ratio.
 double measure_and_raise(const std::vector<Eigen::Vector3d>& c,
                          const std::vector<std::array<int, 3>>& triangles,
-                         const std::vector<double>& deformed, double reference,
+                         const std::vector<double>& deformed, double step,
                          const PassIntervals& intervals, std::vector<double>& eta) {
+  const auto measured = spacing_ratios(c, triangles, deformed, step, intervals);
   std::vector<double> raise(eta.size(), 1.0);
-  double worst = 0.0;
-  for (const auto& t : triangles) {
-    const auto i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]),
-               k = static_cast<std::size_t>(t[2]);
-    if (!intervals.reachable[i] || !intervals.reachable[j] || !intervals.reachable[k]) {
-      continue;
-    }
-    const Eigen::Vector3d e1 = c[j] - c[i], e2 = c[k] - c[i];
-    const Eigen::Vector3d normal = e1.cross(e2);
-    const double area2 = normal.squaredNorm();
-    if (area2 <= 0.0) {
-      continue;
-    }
-    // Gradient of the linear function with values d1, d2 along e1, e2 in the triangle.
-    const double d1 = deformed[j] - deformed[i], d2 = deformed[k] - deformed[i];
-    const Eigen::Vector3d gradient = (d1 * e2.cross(normal) + d2 * normal.cross(e1)) / area2;
-    const double g = gradient.norm();
-    if (g <= 0.0) {
-      continue;
-    }
-    const double need =
-        std::min({intervals.cl_spacing[i], intervals.cl_spacing[j], intervals.cl_spacing[k]});
-    const double ratio = reference / g / need;
-    worst = std::max(worst, ratio);
-    for (const auto v : {i, j, k}) {
-      raise[v] = std::max(raise[v], ratio);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (const int v : triangles[t]) {
+      auto& r = raise[static_cast<std::size_t>(v)];
+      r = std::max(r, measured.ratio[t]);
     }
   }
   for (std::size_t v = 0; v < eta.size(); ++v) {
-    eta[v] *= raise[v] > 1.0 ? raise[v] * 1.02 : 1.0; // a little past, to converge from above
+    eta[v] *= raise[v] > 1.0 ? raise[v] * 1.02 : 1.0;
   }
-  return worst;
+  return measured.worst;
 }
 
 } // namespace
+
+PlaneSpacing space_planes(const std::vector<double>& deformed, double reference) {
+  if (deformed.empty()) {
+    return {0.0, reference, 0};
+  }
+  const auto [lo, hi] = std::ranges::minmax_element(deformed);
+  const double range = *hi - *lo;
+  const double inset = 1e-6 * std::max(range, 1.0);
+  const long planes = std::max(2L, static_cast<long>(std::ceil((range - 2 * inset) / reference)) + 1);
+  return {*lo + inset, (range - 2 * inset) / static_cast<double>(planes - 1), planes};
+}
 
 Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points, const Eigen::Vector3d& s,
                        const PassIntervals& intervals) {
@@ -107,13 +101,15 @@ Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points, const Eige
   }
   d.deformed = d.xi;
   d.reference = intervals.min_interval;
+  d.planes = space_planes(d.deformed, d.reference);
   return d;
 }
 
 Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
                                      const std::vector<std::array<int, 3>>& triangles,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals,
-                                     int max_iterations) {
+                                     int max_iterations, double insertion_margin,
+                                     double allowance) {
   Deformation d = iso_planar(c, s, intervals);
   const int n = static_cast<int>(c.size());
   const auto edges = unique_edges(triangles);
@@ -141,6 +137,8 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
     return fail(ErrorCode::bad_input, "the CL surface deformation could not be solved");
   }
   Eigen::VectorXd rhs(n);
+  std::vector<double> deformed;
+  double cheapest = std::numeric_limits<double>::infinity();
   for (d.iterations = 1; d.iterations <= max_iterations; ++d.iterations) {
     rhs.setZero();
     for (const auto& [i, j] : edges) {
@@ -153,9 +151,19 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
       rhs[v] += penalty * d.xi[static_cast<std::size_t>(v)];
     }
     const Eigen::VectorXd x = solver.solve(rhs);
-    d.deformed.assign(x.data(), x.data() + n);
-    d.worst_ratio = measure_and_raise(c, triangles, d.deformed, d.reference, intervals, eta);
-    if (d.worst_ratio <= 1.005) {
+    deformed.assign(x.data(), x.data() + n);
+    const auto planes = space_planes(deformed, d.reference);
+    auto insertion = pass_insertion(c, triangles, deformed, planes.step, intervals,
+                                    insertion_margin, allowance);
+    if (insertion.predicted_length < cheapest) {
+      cheapest = insertion.predicted_length;
+      d.deformed = deformed;
+      d.planes = planes;
+      d.worst_ratio = insertion.worst_ratio;
+      d.insertion = std::move(insertion);
+      d.chosen = d.iterations;
+    }
+    if (measure_and_raise(c, triangles, deformed, planes.step, intervals, eta) <= 1.005) {
       break;
     }
   }

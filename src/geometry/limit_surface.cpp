@@ -170,12 +170,26 @@ Expected<LimitSample> LimitSurface::evaluate_regular(int face, double u, double 
 }
 
 FaceTessellation LimitSurface::tessellate(int face, int rate) const {
+  if (!has_patch(face)) {
+    return {};
+  }
+  const auto n = static_cast<std::size_t>(patches_->surfaces[face]->GetFaceSize());
+  return tessellate(face, std::vector<int>(n, rate), rate);
+}
+
+FaceTessellation LimitSurface::tessellate(int face, const std::vector<int>& edge_rates,
+                                          int inner) const {
   FaceTessellation out;
   if (!has_patch(face)) {
     return out;
   }
+  std::vector<int> rates;
+  for (const int r : edge_rates) {
+    rates.push_back(std::clamp(r, 1, 256));
+  }
+  rates.push_back(std::clamp(inner, 1, 256));
   const osd::Bfr::Tessellation tess(patches_->surfaces[face]->GetParameterization(),
-                                    std::clamp(rate, 1, 256),
+                                    static_cast<int>(rates.size()), rates.data(),
                                     osd::Bfr::Tessellation::Options().SetFacetSize(3));
   std::vector<double> coords(static_cast<std::size_t>(tess.GetNumCoords()) * 2);
   tess.GetCoords(coords.data());

@@ -44,7 +44,8 @@ MeshSlicer::MeshSlicer(const std::vector<std::array<int, 3>>& triangles,
   max_ = triangles.empty() ? 0.0 : *std::ranges::max_element(tri_max_);
 }
 
-std::vector<SlicePolyline> MeshSlicer::slice(double level) {
+std::vector<SlicePolyline> MeshSlicer::slice(double level, const std::vector<unsigned char>* depth,
+                                             int min_depth) {
   const auto& values = *values_;
   while (next_ < by_min_.size() && tri_min_[static_cast<std::size_t>(by_min_[next_])] <= level) {
     active_.push_back(by_min_[next_++]);
@@ -66,6 +67,9 @@ std::vector<SlicePolyline> MeshSlicer::slice(double level) {
     }
   };
   for (const int ti : active_) {
+    if (depth != nullptr && (*depth)[static_cast<std::size_t>(ti)] < min_depth) {
+      continue;
+    }
     const auto& t = (*triangles_)[static_cast<std::size_t>(ti)];
     std::array<EdgePoint, 2> ends{};
     int found = 0;

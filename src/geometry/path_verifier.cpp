@@ -1,10 +1,10 @@
 #include "geometry/path_verifier.hpp"
 
-#include "base/atomic_output_file.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/scallop_meter.hpp"
 #include "geometry/step_over.hpp"
 #include "geometry/surface_mesh.hpp"
+#include "geometry/verify_picture.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -61,15 +61,16 @@ Expected<Path> read_path(const std::filesystem::path& file, double r, VerifyRepo
   return path;
 }
 
-// Capsules by the cells of size r their boxes (grown by r) touch.
+// Capsules by the cells of size `cell` their boxes touch, grown by the capsule radius plus
+// `reach`: every capsule a ray of length `reach` from a point in a cell can enter.
 class CapsuleGrid {
 public:
-  CapsuleGrid(const std::vector<Capsule>& capsules, double cell)
+  CapsuleGrid(const std::vector<Capsule>& capsules, double cell, double reach)
       : capsules_(&capsules), cell_(cell) {
     for (std::size_t i = 0; i < capsules.size(); ++i) {
       const auto& c = capsules[i];
-      const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - c.radius;
-      const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + c.radius;
+      const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - (c.radius + reach);
+      const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + (c.radius + reach);
       const auto a = grid_cell(lo, cell_), b = grid_cell(hi, cell_);
       for (long long x = a[0]; x <= b[0]; ++x) {
         for (long long y = a[1]; y <= b[1]; ++y) {
@@ -189,62 +190,6 @@ double refine(Measurer& m, const Sample& s, double reach, double& gouge) {
   return std::max({s.height, f1, f2});
 }
 
-Expected<void> write_svg(const std::filesystem::path& file,
-                         const std::vector<Eigen::Vector3d>& points,
-                         const std::vector<double>& heights, double max_height, const Path& path) {
-  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p.head<2>());
-    hi = hi.cwiseMax(p.head<2>());
-  }
-  constexpr int pixels = 240;
-  const double size = std::max(hi.x() - lo.x(), hi.y() - lo.y());
-  const double px = size / pixels;
-  const int w = static_cast<int>(std::ceil((hi.x() - lo.x()) / px)) + 1;
-  const int h = static_cast<int>(std::ceil((hi.y() - lo.y()) / px)) + 1;
-  std::vector<double> image(static_cast<std::size_t>(w * h), -1.0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const int x = static_cast<int>((points[i].x() - lo.x()) / px);
-    const int y = static_cast<int>((points[i].y() - lo.y()) / px);
-    auto& cell = image[static_cast<std::size_t>(y * w + x)];
-    cell = std::max(cell, heights[i]);
-  }
-  SUBFEED_TRY_ASSIGN(auto out, AtomicOutputFile::create(file));
-  out.write(
-      fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
-                  "height=\"{}\">\n<g shape-rendering=\"crispEdges\">\n",
-                  w * 3, h * 3 + 30, w * 3, h * 3 + 30));
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const double v = image[static_cast<std::size_t>(y * w + x)];
-      if (v < 0.0) {
-        continue;
-      }
-      // Blue (none) to red (the worst scallop); black where the ball cut below the surface.
-      const double f = max_height > 0.0 ? std::clamp(v / max_height, 0.0, 1.0) : 0.0;
-      const auto colour =
-          v == 0.0 ? std::string("#000")
-                   : fmt::format("rgb({},{},{})", static_cast<int>(255 * f),
-                                 static_cast<int>(80 * (1 - f)), static_cast<int>(255 * (1 - f)));
-      out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"3\" height=\"3\" fill=\"{}\"/>\n",
-                            x * 3, (h - 1 - y) * 3, colour));
-    }
-  }
-  out.write("</g>\n<g fill=\"none\" stroke=\"#fff\" stroke-width=\"0.6\">\n");
-  for (const auto& pass : path.passes_xy) {
-    std::string pts;
-    for (std::size_t i = 0; i < pass.size(); i += std::max<std::size_t>(1, pass.size() / 400)) {
-      pts += fmt::format("{:.1f},{:.1f} ", (pass[i].x() - lo.x()) / px * 3,
-                         (h - 1 - (pass[i].y() - lo.y()) / px) * 3);
-    }
-    out.write("<polyline points=\"" + pts + "\"/>\n");
-  }
-  out.write(fmt::format("</g>\n<text x=\"4\" y=\"{}\" font-size=\"14\" font-family=\"sans-serif\">"
-                        "scallop 0 (blue) to {:.4f} mm (red); white: passes</text>\n</svg>\n",
-                        h * 3 + 20, max_height));
-  return out.commit();
-}
-
 } // namespace
 
 Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::filesystem::path& cl,
@@ -255,11 +200,13 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
   if (path.capsules.empty()) {
     return fail(ErrorCode::bad_input, "no cutting moves in the CL data", {cl.string(), 0, {}});
   }
-  const CapsuleGrid grid(path.capsules, r);
+  // Rays look for material up to one radius above the surface.
+  const CapsuleGrid grid(path.capsules, r, r);
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, grid, r, {}};
   std::vector<Sample> samples;
   std::vector<Eigen::Vector3d> points;
+  std::vector<char> gouges;
   std::vector<double> weights;
   std::vector<double> radii; // of normal curvature across the nearest pass, for L*
   for (int f = 0; f < surface.face_count(); ++f) {
@@ -278,7 +225,8 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       grid.near(s->point, m.near);
       const auto h = measure_scallop(s->point, s->normal, m.near, r);
       ++report.samples;
-      if (h.gouge_depth > 1e-7) { // below 0.1 um: rounding of the CL data
+      const bool gouged = h.gouge_depth > 1e-7; // below 0.1 um: rounding of the CL data
+      if (gouged) {
         ++report.gouges;
         if (h.gouge_depth > report.max_gouge) {
           report.max_gouge = h.gouge_depth;
@@ -291,6 +239,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       }
       samples.push_back({f, uv.x(), uv.y(), h.height});
       points.push_back(s->point);
+      gouges.push_back(h.gouge_depth > 1e-3 ? 1 : 0); // the picture marks those over 1 um
       radii.push_back(radius_across(*s, m.near));
       // Each sample stands for the area of one parameter cell of the face.
       weights.push_back(s->du.cross(s->dv).norm() / (static_cast<double>(rate) * rate));
@@ -332,8 +281,15 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       report.ideal_length += weights[i] / w;
     }
   }
-  if (options.svg) {
-    SUBFEED_TRY(write_svg(*options.svg, points, heights, report.max_scallop, path));
+  if (options.svg || options.png) {
+    const VerifyPicture picture{std::move(points), std::move(heights), std::move(gouges),
+                                report.max_scallop, path.passes_xy};
+    if (options.svg) {
+      SUBFEED_TRY(write_svg(*options.svg, picture));
+    }
+    if (options.png) {
+      SUBFEED_TRY(write_png(*options.png, picture));
+    }
   }
   return report;
 }

@@ -68,19 +68,24 @@ std::optional<double> entry(const Eigen::Vector3d& p, const Eigen::Vector3d& n, 
 
 ScallopSample measure_scallop(const Eigen::Vector3d& p, const Eigen::Vector3d& n,
                               std::span<const Capsule> capsules, double max_height) {
+  // The ray enters a capsule no sooner than p's distance to it, d - radius: a capsule
+  // farther than the best entry so far cannot improve on it and is not intersected.
   ScallopSample sample;
+  double bound = max_height;
   for (const Capsule& c : capsules) {
-    const double d = distance_to_segment(p, c);
-    if (d < c.radius) {
-      sample.gouge_depth = std::max(sample.gouge_depth, c.radius - d);
+    const double gap = distance_to_segment(p, c) - c.radius;
+    if (gap < 0.0) {
+      sample.gouge_depth = std::max(sample.gouge_depth, -gap);
       sample.height = 0.0;
+      bound = 0.0;
       continue;
     }
-    if (d - c.radius > max_height + 2.0 * c.radius) {
-      continue; // too far to reach within max_height
+    if (gap >= bound) {
+      continue;
     }
-    if (const auto t = entry(p, n, c, max_height); t && *t < sample.height) {
+    if (const auto t = entry(p, n, c, bound); t && *t < sample.height) {
       sample.height = *t;
+      bound = *t;
     }
   }
   return sample;

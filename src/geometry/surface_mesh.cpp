@@ -36,47 +36,82 @@ double SurfaceMesh::radius_along(int i, const Eigen::Vector3d& t) const {
   return -1.0 / kappa;
 }
 
-int rate_for_tolerance(const LimitSurface& surface, double chord_tolerance, int max_rate) {
-  double worst = 0.0;
+std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_tolerance,
+                                     int max_rate) {
+  std::vector<int> rates(static_cast<std::size_t>(surface.face_count()), 0);
   constexpr int grid = 5;
   for (int f = 0; f < surface.face_count(); ++f) {
     if (!surface.has_patch(f)) {
       continue;
     }
+    double worst = 0.0;
     for (const auto& uv : surface.tessellate(f, grid).uv) {
       const auto s = surface.evaluate_regular(f, uv.x(), uv.y());
       if (!s) {
         continue;
       }
-      worst = std::max({worst, std::abs(s->duu.dot(s->normal)), std::abs(s->dvv.dot(s->normal)),
-                        std::abs(s->duv.dot(s->normal))});
+      // Along u, v and both diagonals of a parameter cell (triangles take one of them).
+      const double uu = s->duu.dot(s->normal), mixed = s->duv.dot(s->normal),
+                   vv = s->dvv.dot(s->normal);
+      worst = std::max({worst, std::abs(uu), std::abs(vv), std::abs(uu + 2 * mixed + vv),
+                        std::abs(uu - 2 * mixed + vv)});
     }
+    // A chord over parameter step d/rate sags by |S''(d, d).n| / (8 rate^2).
+    const double rate = std::ceil(std::sqrt(worst / (8.0 * chord_tolerance)));
+    rates[static_cast<std::size_t>(f)] =
+        static_cast<int>(std::clamp(rate, 2.0, static_cast<double>(max_rate)));
   }
-  // A chord over parameter length 1/rate sags by |S''.n| / (8 rate^2).
-  const double rate = std::ceil(std::sqrt(worst / (8.0 * chord_tolerance)));
-  return static_cast<int>(std::clamp(rate, 2.0, static_cast<double>(max_rate)));
+  return rates;
 }
 
 Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface, int rate) {
+  return mesh_surface(cage, surface,
+                      std::vector<int>(static_cast<std::size_t>(surface.face_count()), rate));
+}
+
+Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
+                                   const std::vector<int>& face_rates) {
   SurfaceMesh mesh;
-  mesh.rate = rate;
+  std::map<std::pair<long, long>, int> edge_rate;
+  for (int f = 0; f < surface.face_count(); ++f) {
+    const auto loop = cage.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const long a = loop[i], b = loop[(i + 1) % loop.size()];
+      auto& r = edge_rate[{std::min(a, b), std::max(a, b)}];
+      r = std::max(r, face_rates[static_cast<std::size_t>(f)]);
+    }
+  }
   // Points on a cage edge or corner are shared with the neighbouring faces: keyed by the
-  // cage topology (Bfr lists a face's boundary points first, corner by corner, rate per
-  // edge), not by position, since two faces' approximations of the same edge may differ
-  // in the last digits near irregular features.
+  // cage topology (Bfr lists a face's boundary points first, corner by corner, then the
+  // edge's inner points), not by position, since two faces' approximations of the same
+  // edge may differ in the last digits near irregular features.
   std::map<std::array<long, 3>, std::vector<int>> shared;
   for (int f = 0; f < surface.face_count(); ++f) {
-    const auto tess = surface.tessellate(f, rate);
+    if (!surface.has_patch(f)) {
+      continue;
+    }
     const auto loop = cage.face(f);
-    const auto n = static_cast<long>(loop.size());
+    const auto n = loop.size();
+    std::vector<int> rates(n);
+    std::vector<long> edge_of, step_of; // per boundary point: its edge and index along it
+    for (std::size_t e = 0; e < n; ++e) {
+      const long a = loop[e], b = loop[(e + 1) % n];
+      rates[e] = edge_rate[{std::min(a, b), std::max(a, b)}];
+      mesh.rate = std::max(mesh.rate, rates[e]);
+      for (int j = 0; j < rates[e]; ++j) {
+        edge_of.push_back(static_cast<long>(e));
+        step_of.push_back(j);
+      }
+    }
+    const auto tess = surface.tessellate(f, rates, face_rates[static_cast<std::size_t>(f)]);
     std::vector<int> index(tess.uv.size());
     for (std::size_t k = 0; k < tess.uv.size(); ++k) {
       SUBFEED_TRY_ASSIGN(const auto s, surface.evaluate_regular(f, tess.uv[k].x(), tess.uv[k].y()));
       std::vector<int>* same_place = nullptr;
-      if (static_cast<long>(k) < n * rate) {
-        const long e = static_cast<long>(k) / rate, j = static_cast<long>(k) % rate;
-        const long v0 = loop[static_cast<std::size_t>(e)],
-                   v1 = loop[static_cast<std::size_t>((e + 1) % n)];
+      if (k < edge_of.size()) {
+        const auto e = static_cast<std::size_t>(edge_of[k]);
+        const long j = step_of[k], rate = rates[e];
+        const long v0 = loop[e], v1 = loop[(e + 1) % n];
         const std::array<long, 3> key = j == 0    ? std::array<long, 3>{v0, -1, 0}
                                         : v0 < v1 ? std::array<long, 3>{v0, v1, j}
                                                   : std::array<long, 3>{v1, v0, rate - j};

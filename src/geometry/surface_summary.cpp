@@ -2,9 +2,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 
 namespace subfeed::geometry {
 
@@ -62,6 +64,12 @@ Expected<SurfaceSummary> summarize(const Cage& cage, const LimitSurface& surface
         return std::unexpected(sample.error());
       }
       points.push_back(sample->point);
+      const double slope =
+          std::acos(std::clamp(std::abs(sample->normal.z()), 0.0, 1.0)) * 180.0 / std::numbers::pi;
+      if (slope > summary.steepest_deg) {
+        summary.steepest_deg = slope;
+        summary.steepest_at = sample->point;
+      }
       summary.min = summary.min.cwiseMin(sample->point);
       summary.max = summary.max.cwiseMax(sample->point);
     }

@@ -1,5 +1,6 @@
 #include "geometry/toolpath_planner.hpp"
 
+#include "geometry/closest_point.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/point_grid.hpp"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <unordered_map>
 
 namespace subfeed::geometry {
@@ -44,8 +46,8 @@ ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh)
 Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const LimitSurface& surface,
                                                    const PlanOptions& options) {
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
-  const int rate = rate_for_tolerance(surface, chord, options.max_rate);
-  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rate));
+  const auto rates = rates_for_tolerance(surface, chord, options.max_rate);
+  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
   ToolpathPlanner planner(options, std::move(mesh));
   planner.chord_tolerance_ = chord;
   const double a = options.direction_deg * std::numbers::pi / 180.0;
@@ -57,23 +59,43 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     planner.cl_points_.push_back(m.points[static_cast<std::size_t>(i)] +
                                  r * m.normals[static_cast<std::size_t>(i)]);
   }
+  std::vector<int> uses(static_cast<std::size_t>(m.vertex_count()) + 1, 0);
+  for (const auto& t : m.triangles) {
+    for (const int v : t) {
+      ++uses[static_cast<std::size_t>(v) + 1];
+    }
+  }
+  std::partial_sum(uses.begin(), uses.end(), uses.begin());
+  planner.vertex_triangle_start_ = uses;
+  planner.vertex_triangles_.resize(static_cast<std::size_t>(uses.back()));
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    for (const int v : m.triangles[i]) {
+      planner.vertex_triangles_[static_cast<std::size_t>(uses[static_cast<std::size_t>(v)]++)] =
+          static_cast<int>(i);
+    }
+  }
   for (const auto& t : m.triangles) {
     const auto& p0 = m.points[static_cast<std::size_t>(t[0])];
     const auto& p1 = m.points[static_cast<std::size_t>(t[1])];
     const auto& p2 = m.points[static_cast<std::size_t>(t[2])];
     planner.centroids_.push_back((p0 + p1 + p2) / 3.0);
     planner.area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
+    planner.longest_edge_ = std::max(
+        {planner.longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
   }
   const auto intervals = pass_intervals(m, r, options.scallop, planner.s_);
+  const double widest = std::ranges::max(intervals.cl_spacing);
+  const double insertion_margin = options.insertion_margin.value_or(widest);
   if (options.baseline) {
     planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
   } else {
     SUBFEED_TRY_ASSIGN(planner.deformation_,
                        deform_cl_mesh(planner.cl_points_, m.triangles, planner.s_, intervals,
-                                      options.refine_iterations));
+                                      options.refine_iterations, insertion_margin,
+                                      options.spacing_allowance));
   }
   auto& s = planner.summary_;
-  s.rate = rate;
+  s.rate = m.rate;
   s.mesh_vertices = m.vertex_count();
   s.mesh_triangles = m.triangle_count();
   s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
@@ -81,12 +103,13 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   s.max_interval = intervals.max_interval;
   s.reference = planner.deformation_.reference;
   s.solves = planner.deformation_.iterations;
+  s.chosen_solve = planner.deformation_.chosen;
   s.worst_spacing_ratio = planner.deformation_.worst_ratio;
+  s.inserted_depth = planner.deformation_.insertion.max_depth;
+  s.planes = planner.deformation_.planes.planes;
   double top = -1e300;
-  double widest = 0.0;
-  for (std::size_t i = 0; i < planner.cl_points_.size(); ++i) {
-    top = std::max(top, planner.cl_points_[i].z() + r);
-    widest = std::max(widest, intervals.cl_spacing[i]);
+  for (const auto& c : planner.cl_points_) {
+    top = std::max(top, c.z() + r);
   }
   planner.safe_z_ = top + options.clearance;
   planner.link_distance_ = 2.0 * widest + options.clearance;
@@ -122,7 +145,9 @@ void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& tr
 }
 
 std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& pass) const {
-  const double tol = options_.tolerance.value_or(chord_tolerance_);
+  // Half the mesh tolerance: the chord error of the mesh, this reduction and the cleared
+  // midpoints (clear_pass) together stay under 1 um of gouge at the default tolerance.
+  const double tol = 0.5 * chord_tolerance_;
   std::vector<std::size_t> kept{0};
   std::size_t anchor = 0;
   for (std::size_t j = 2; j < pass.size(); ++j) {
@@ -198,17 +223,79 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
 
 // Whether a design vertex lies closer to the ball centre than sqrt(limit2): the ball would
 // cut below the surface there.
-bool ToolpathPlanner::ball_gouges(const PointGrid& design, const Eigen::Vector3d& centre,
-                                  double limit2) const {
-  bool inside = false;
-  design.within(centre, options_.ball_radius, [&](int v) {
-    inside = inside || (mesh_.points[static_cast<std::size_t>(v)] - centre).squaredNorm() < limit2;
-  });
-  return inside;
+double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
+                                      const Eigen::Vector3d& dir) const {
+  const double r = options_.ball_radius;
+  // A triangle inside the ball has a vertex within r plus its longest edge of the centre.
+  const double reach = r + longest_edge_;
+  double total = 0.0;
+  // Moving the ball moves the nearest point of a triangle, and a lifted ball can meet
+  // triangles the first one did not (the far wall of a groove): a few rounds settle both.
+  for (int round = 0; round < 8; ++round) {
+    const Eigen::Vector3d at = centre + total * dir;
+    double lift = 0.0;
+    design.within(at, reach, [&](int v) {
+      const auto u = static_cast<std::size_t>(v);
+      for (int k = vertex_triangle_start_[u]; k < vertex_triangle_start_[u + 1]; ++k) {
+        const auto& t = mesh_.triangles[static_cast<std::size_t>(vertex_triangles_[static_cast<std::size_t>(k)])];
+        const Eigen::Vector3d m =
+            at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
+                                     mesh_.points[static_cast<std::size_t>(t[1])],
+                                     mesh_.points[static_cast<std::size_t>(t[2])]);
+        const double c = m.squaredNorm() - r * r;
+        if (c < 0.0) {
+          const double b = m.dot(dir);
+          lift = std::max(lift, -b + std::sqrt(b * b - c));
+        }
+      }
+    });
+    total += lift;
+    if (lift <= 1e-9) {
+      break;
+    }
+  }
+  return total;
+}
+
+void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& design) {
+  // Over a hollow the lift goes one mesh tolerance further, as the true surface may lie
+  // that much nearer the ball than its triangles. Elsewhere a lift is only the rounding of
+  // a point interpolated on a mesh edge.
+  const double hollow = 2.0 * chord_tolerance_;
+  const auto lift_clear = [&](PassPoint& p) {
+    double lift = clearance_lift(design, p.centre, p.normal);
+    lift += lift > hollow ? chord_tolerance_ : 0.0;
+    p.centre += lift * p.normal;
+    return lift;
+  };
+  for (auto& p : pass) {
+    summary_.lifted_points += lift_clear(p) > hollow ? 1 : 0;
+  }
+  // Where the pass turns sharply (over a hollow, round a boundary corner) the ball between
+  // two clear points can still cut in: the cleared midpoint goes in between, recursively,
+  // wherever it had to move more than a quarter of the tolerance.
+  std::vector<PassPoint> out;
+  out.reserve(pass.size());
+  const auto refine = [&](auto& self, const PassPoint& a, const PassPoint& b, int depth) -> void {
+    PassPoint mid{0.5 * (a.centre + b.centre), 0.5 * (a.contact + b.contact),
+                  (a.normal + b.normal).normalized(), a.axis};
+    if (lift_clear(mid) > 0.25 * chord_tolerance_ && depth < 8) {
+      self(self, a, mid, depth + 1);
+      out.push_back(mid);
+      self(self, mid, b, depth + 1);
+    }
+  };
+  for (std::size_t i = 0; i < pass.size(); ++i) {
+    if (i > 0) {
+      refine(refine, pass[i - 1], pass[i], 0);
+    }
+    out.push_back(pass[i]);
+  }
+  pass = std::move(out);
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::boundary_passes(const PointGrid& design, double reach2) {
+ToolpathPlanner::boundary_passes(const PointGrid& design) {
   // Edges of one triangle only, in that triangle's winding, chained end to start.
   std::map<std::pair<int, int>, int> uses;
   for (const auto& t : mesh_.triangles) {
@@ -240,97 +327,79 @@ ToolpathPlanner::boundary_passes(const PointGrid& design, double reach2) {
       chain.push_back(v);
     }
     std::vector<PassPoint> run;
-    const auto flush = [&] {
-      if (run.size() >= 2) {
-        passes.push_back(std::move(run));
-      }
-      run.clear();
-    };
-    const auto gouges = [&](const Eigen::Vector3d& centre, double limit2) {
-      return ball_gouges(design, centre, limit2);
-    };
-    // A chord between neighbouring CL points sags into a convex boundary by about the mesh
-    // tolerance; only a sag several times that is a turn the ball cannot follow.
-    const double r = options_.ball_radius;
-    const double sag2 = std::pow(r - 4.0 * (r - std::sqrt(reach2)), 2);
     for (const int i : chain) {
       const auto u = static_cast<std::size_t>(i);
-      PassPoint p{cl_points_[u], mesh_.points[u], mesh_.normals[u], mesh_.normals[u]};
-      // Where the boundary turns sharply the ball between two safe points can still cut in.
-      if (!run.empty() && gouges(0.5 * (run.back().centre + p.centre), sag2)) {
-        flush();
-      }
-      if (gouges(p.centre, reach2)) {
-        ++summary_.trimmed_points;
-        flush();
-        continue;
-      }
-      run.push_back(p);
+      run.push_back({cl_points_[u], mesh_.points[u], mesh_.normals[u], mesh_.normals[u]});
     }
-    flush();
+    if (run.size() >= 2) {
+      clear_pass(run, design);
+      passes.push_back(std::move(run));
+    }
   }
+  return passes;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth, const PointGrid& design) {
+  const auto& inserted = deformation_.insertion.depth;
+  auto lines = slicer.slice(level, inserted.empty() ? nullptr : &inserted, depth);
+  std::vector<std::vector<PassPoint>> passes;
+  for (const auto& line : lines) {
+    std::vector<PassPoint> pass;
+    for (const auto& e : line) {
+      const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
+      PassPoint p;
+      p.centre = (1 - e.t) * cl_points_[a] + e.t * cl_points_[b];
+      p.contact = (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b];
+      p.normal = ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized();
+      pass.push_back(p);
+    }
+    if (pass.size() >= 2) {
+      clear_pass(pass, design);
+      passes.push_back(std::move(pass));
+    }
+  }
+  // Along the feed direction, sorted across it.
+  for (auto& pass : passes) {
+    if ((pass.back().centre - pass.front().centre).dot(feed_dir_) < 0.0) {
+      std::ranges::reverse(pass);
+    }
+  }
+  std::ranges::sort(passes, [&](const auto& x, const auto& y) {
+    return x.front().centre.dot(feed_dir_) < y.front().centre.dot(feed_dir_);
+  });
   return passes;
 }
 
 Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
   MeshSlicer slicer(mesh_.triangles, deformation_.deformed);
-  const double ref = deformation_.reference;
-  const double range = slicer.max_value() - slicer.min_value();
-  // The outermost planes run along the extremes of the surface (a hair inside, so they cut
-  // it), the others evenly between them no farther apart than the reference.
-  const double inset = 1e-6 * std::max(range, 1.0);
-  const long planes = std::max(2L, static_cast<long>(std::ceil((range - 2 * inset) / ref)) + 1);
-  const double first = slicer.min_value() + inset;
-  const double step = (range - 2 * inset) / static_cast<double>(planes - 1);
-  summary_.planes = planes;
-  const PointGrid design(mesh_.points, options_.ball_radius);
+  const auto [first, step, planes] = deformation_.planes;
+  const int deepest = deformation_.insertion.max_depth;
+  const long per_plane = 1L << max_insertion_depth;
+  const PointGrid design(mesh_.points, options_.ball_radius + longest_edge_);
   const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
-  const double slack = 2.0 * chord_tolerance_ + 1e-6;
-  const double reach2 = std::pow(options_.ball_radius - slack, 2);
-  for (long k = 0; k < planes; ++k) {
-    if (progress) {
-      progress(k, planes);
+  long cut_levels = 0;
+  for (long index = 0; index <= (planes - 1) * per_plane; ++index) {
+    const int depth = level_depth(index);
+    if (depth > deepest) {
+      continue;
     }
-    auto lines = slicer.slice(first + static_cast<double>(k) * step);
-    // Along the feed direction, and every other plane the other way round for zig-zag.
-    std::vector<std::vector<PassPoint>> passes;
-    for (const auto& line : lines) {
-      std::vector<PassPoint> run;
-      const auto flush = [&] {
-        if (run.size() >= 2) {
-          passes.push_back(std::move(run));
-        }
-        run.clear();
-      };
-      for (const auto& e : line) {
-        const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
-        PassPoint p;
-        p.centre = (1 - e.t) * cl_points_[a] + e.t * cl_points_[b];
-        p.contact = (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b];
-        p.normal = ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized();
-        if (ball_gouges(design, p.centre, reach2)) {
-          ++summary_.trimmed_points;
-          flush();
-          continue;
-        }
-        run.push_back(p);
-      }
-      flush();
+    if (progress && depth == 0) {
+      progress(index / per_plane, planes);
     }
-    for (auto& pass : passes) {
-      if ((pass.back().centre - pass.front().centre).dot(feed_dir_) < 0.0) {
-        std::ranges::reverse(pass);
-      }
+    const double level = first + static_cast<double>(index) * step / static_cast<double>(per_plane);
+    auto passes = cut_level(slicer, level, depth, design);
+    if (passes.empty()) {
+      continue;
     }
-    std::ranges::sort(passes, [&](const auto& x, const auto& y) {
-      return x.front().centre.dot(feed_dir_) < y.front().centre.dot(feed_dir_);
-    });
-    if (options_.zigzag && k % 2 == 1) {
+    // Every other level the other way round for zig-zag.
+    if (options_.zigzag && cut_levels % 2 == 1) {
       std::ranges::reverse(passes);
       for (auto& pass : passes) {
         std::ranges::reverse(pass);
       }
     }
+    ++cut_levels;
     for (auto& pass : passes) {
       set_axes(pass, triangles);
       SUBFEED_TRY(emit_pass(pass, sink));
@@ -338,7 +407,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   }
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
-  for (auto& pass : boundary_passes(design, reach2)) {
+  for (auto& pass : boundary_passes(design)) {
     set_axes(pass, triangles);
     SUBFEED_TRY(emit_pass(pass, sink));
   }

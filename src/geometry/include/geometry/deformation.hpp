@@ -9,8 +9,13 @@
 // Being first order, the result is measured: on every triangle the spacing between the
 // level lines of xi' (the passes) is compared with the spacing its vertices need, eta is
 // raised where it is too wide and the system solved again (the factorisation is reused).
+// Raising eta near one spot crowds passes over a wide area around it, so each solve is
+// also priced: the cutting length its planes plus the passes inserted where they are still
+// too far apart (pass_insertion.hpp) would take, by the co-area formula. The cheapest
+// solve is kept.
 
 #include "base/error.hpp"
+#include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
 
 #include <Eigen/Core>
@@ -19,21 +24,35 @@
 
 namespace subfeed::geometry {
 
+// Equally spaced levels of xi' from the least value to the greatest (each a hair inside,
+// so it cuts the surface), no farther apart than the reference.
+struct PlaneSpacing {
+  double first = 0.0; // xi' of the first plane, mm
+  double step = 0.0;  // mm
+  long planes = 0;
+};
+[[nodiscard]] PlaneSpacing space_planes(const std::vector<double>& deformed, double reference);
+
 struct Deformation {
   std::vector<double> xi;       // s . c per CL vertex, mm
   std::vector<double> deformed; // xi' per CL vertex, mm
   double reference = 0.0;       // plane spacing in xi', mm
+  PlaneSpacing planes;
+  PassInsertion insertion;      // where passes between the planes are still needed
   int iterations = 0;           // solves made
-  double worst_ratio = 0.0;     // largest measured/needed spacing after the last solve
+  int chosen = 0;               // the solve kept (1-based)
+  double worst_ratio = 0.0;     // largest measured/needed spacing of the kept solve
 };
 
 [[nodiscard]] Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
                                                    const std::vector<std::array<int, 3>>& triangles,
                                                    const Eigen::Vector3d& s,
                                                    const PassIntervals& intervals,
-                                                   int max_iterations = 6);
+                                                   int max_iterations, double insertion_margin,
+                                                   double allowance);
 
-// The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval.
+// The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval, with
+// nothing inserted.
 [[nodiscard]] Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals);
 

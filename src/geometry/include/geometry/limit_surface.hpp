@@ -58,6 +58,11 @@ public:
 
   // `rate` segments along each edge of the face (1..256); empty for a face without patch.
   [[nodiscard]] FaceTessellation tessellate(int face, int rate) const;
+  // edge_rates[i] segments along the edge from the face's vertex i to vertex i+1 and
+  // `inner` across the face, so neighbours that agree on their shared edge's rate meet
+  // point for point. The boundary points come first, corner i then its edge's inner points.
+  [[nodiscard]] FaceTessellation tessellate(int face, const std::vector<int>& edge_rates,
+                                            int inner) const;
 
 private:
   struct Patches;

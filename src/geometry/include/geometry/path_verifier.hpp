@@ -25,6 +25,7 @@ struct VerifyOptions {
   std::optional<double> scallop_target;     // mm, for L*; default the measured maximum
   double sample_spacing = 0.0;              // mm; 0: a quarter of the typical pass spacing
   std::optional<std::filesystem::path> svg; // top view over a scallop heat map
+  std::optional<std::filesystem::path> png; // the same picture as PNG
 };
 
 struct VerifyReport {

@@ -22,7 +22,7 @@ struct SurfaceMesh {
   // from the tool, i.e. convex).
   std::vector<Eigen::Matrix3d> curvature;
   std::vector<std::array<int, 3>> triangles; // counter-clockwise seen from the tool
-  int rate = 0;                              // segments per cage face edge used
+  int rate = 0;                              // most segments along any cage face edge
 
   [[nodiscard]] int vertex_count() const { return static_cast<int>(points.size()); }
   [[nodiscard]] int triangle_count() const { return static_cast<int>(triangles.size()); }
@@ -34,11 +34,17 @@ struct SurfaceMesh {
 // W for one limit sample (see SurfaceMesh::curvature).
 [[nodiscard]] Eigen::Matrix3d curvature_matrix(const LimitSample& sample);
 
-// The face tessellation rate that keeps every chord within `chord_tolerance` (mm) of the
-// surface, estimated from second derivatives sampled over every face; clamped to 2..max_rate.
-[[nodiscard]] int rate_for_tolerance(const LimitSurface& surface, double chord_tolerance,
-                                     int max_rate = 128);
+// Per cage face, the tessellation rate that keeps every chord within `chord_tolerance` (mm)
+// of the surface, estimated from second derivatives sampled over the face; clamped to
+// 2..max_rate (0 for a face without a patch).
+[[nodiscard]] std::vector<int> rates_for_tolerance(const LimitSurface& surface,
+                                                   double chord_tolerance, int max_rate = 128);
 
+// A face is cut at its own rate inside; a cage edge at the larger rate of its two faces, so
+// neighbours share every point along it.
+[[nodiscard]] Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
+                                                 const std::vector<int>& face_rates);
+// Every face at the same rate.
 [[nodiscard]] Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
                                                  int rate);
 

@@ -26,6 +26,11 @@ struct SurfaceSummary {
   Eigen::Vector3d min = Eigen::Vector3d::Zero(); // mm
   Eigen::Vector3d max = Eigen::Vector3d::Zero(); // mm
   double area = 0.0;                             // mm^2
+  // Steepest slope of the surface against the XY plane, degrees (90: a vertical wall), and
+  // where it is: how far a three-axis ball end must reach down a wall, and how far a five-axis
+  // head must tilt.
+  double steepest_deg = 0.0;
+  Eigen::Vector3d steepest_at = Eigen::Vector3d::Zero();
 };
 
 [[nodiscard]] CageStats cage_stats(const Cage& cage);

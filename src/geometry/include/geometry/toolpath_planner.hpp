@@ -9,8 +9,10 @@
 //  5. equally spaced planes in the deformed space, each slice mapped back exactly;
 //  6. the tool axis from area-weighted triangle normals within a radius, smoothed along
 //     the pass (or fixed vertical for three axes);
-//  7. CL points that would put the ball into the surface (hollows narrower than the ball,
-//     concave creases) dropped and counted as unreachable;
+//  7. every pass point lifted along the surface normal until the ball clears the design
+//     mesh (hollows narrower than the ball, concave creases: the ball rides over them), and
+//     cleared midpoints inserted where the pass turns so sharply that the ball between two
+//     clear points would cut in;
 //  8. points along a pass reduced to a chordal tolerance; passes zig-zag or one way, linked
 //     by a retract along the tool axis, a rapid and a plunge; last, one pass along every
 //     boundary of the surface, which the slicing planes meet at an angle.
@@ -21,6 +23,8 @@
 #include "cl/cl_pose.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/mesh_slicer.hpp"
+#include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -43,6 +47,11 @@ struct PlanOptions {
   double plunge_feed = 300.0;      // mm/min
   double clearance = 2.0;          // mm, retract along the tool axis between passes
   int refine_iterations = 60;
+  // mm an inserted pass runs past where it is needed; default the widest CL spacing.
+  std::optional<double> insertion_margin;
+  // Passes are inserted where the spacing exceeds the need by more than this fraction
+  // (pass_insertion.hpp); the scallop there may exceed the target by about twice as much.
+  double spacing_allowance = 0.01;
   int max_rate = 96; // tessellation segments per cage face edge
 };
 
@@ -55,11 +64,13 @@ struct PlanSummary {
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space
   int solves = 0;
-  double worst_spacing_ratio = 0.0; // measured/needed, after refinement
+  int chosen_solve = 0;             // the solve whose planes are cut (the shortest path)
+  double worst_spacing_ratio = 0.0; // measured/needed of the planes, before insertion
+  int inserted_depth = 0;           // passes inserted down to step / 2^depth
   long planes = 0;
   long passes = 0;          // polylines cut
   long points = 0;          // feed points written
-  long trimmed_points = 0;  // CL points dropped because the ball would gouge
+  long lifted_points = 0;   // CL points lifted clear of hollows narrower than the ball
   double cut_length = 0.0;  // mm of feed moves along passes
   double link_length = 0.0; // mm of retracts, rapids and plunges
 };
@@ -84,10 +95,14 @@ private:
     Eigen::Vector3d centre, contact, normal, axis;
   };
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
-  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design,
-                                                                    double reach2);
-  [[nodiscard]] bool ball_gouges(const PointGrid& design, const Eigen::Vector3d& centre,
-                                 double limit2) const;
+  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
+  [[nodiscard]] std::vector<std::vector<PassPoint>>
+  cut_level(MeshSlicer& slicer, double level, int depth, const PointGrid& design);
+  // How far the ball centre must move along `dir` until no triangle of the design mesh
+  // reaches inside the ball, mm.
+  [[nodiscard]] double clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
+                                      const Eigen::Vector3d& dir) const;
+  void clear_pass(std::vector<PassPoint>& pass, const PointGrid& design);
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink);
@@ -99,6 +114,8 @@ private:
   Eigen::Vector3d s_, feed_dir_;
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
+  std::vector<int> vertex_triangle_start_, vertex_triangles_; // triangles around each vertex
+  double longest_edge_ = 0.0;                                 // of the design mesh, mm
   Deformation deformation_;
   double chord_tolerance_ = 0.0;
   double safe_z_ = 0.0;

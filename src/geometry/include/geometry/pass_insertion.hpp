@@ -1,0 +1,66 @@
+#pragma once
+// Where the deformed CL surface still spaces its passes wider than the scallop allows, extra
+// passes are cut at intermediate levels of xi' (half, then quarter, ... of the plane step),
+// on those triangles only. A level of xi' can only add passes that run from boundary to
+// boundary, so a region that needs more passes than its neighbours (the rounded nose of a
+// seat) otherwise forces the deformation to crowd passes over a wide area around it;
+// inserted passes start and end where they are needed.
+//
+// depth[t] = number of halvings triangle t needs: the smallest d with
+// spacing ratio (below) / 2^d <= 1 + allowance. The
+// allowance keeps a spot where the passes lie a hair too far apart (the scallop there
+// grows by about twice the allowance) from costing a patch of doubled passes. The field is then
+// grown by `margin` (mm, across the surface) so inserted passes do not stop and start on
+// every small change of the measured spacing.
+
+#include "geometry/pass_intervals.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace subfeed::geometry {
+
+struct PassInsertion {
+  std::vector<unsigned char> depth; // per triangle
+  int max_depth = 0;
+  double worst_ratio = 0.0; // measured/needed spacing before insertion
+  // Cutting length the planes and inserted passes would take on the CL surface, mm: the
+  // co-area formula, sum of area * 2^depth / spacing over the triangles.
+  double predicted_length = 0.0;
+};
+
+// Deepest insertion: passes at 1/16 of the plane step.
+inline constexpr int max_insertion_depth = 4;
+
+[[nodiscard]] PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& cl_points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::vector<double>& deformed, double step,
+                                           const PassIntervals& intervals, double margin,
+                                           double allowance);
+
+// How far apart the level lines of `deformed` (spaced `step`) lie on each triangle of the CL
+// mesh c against the least spacing its vertices need (> 1: too far apart); 0 where
+// unreachable or no level crosses. Per triangle the larger of its own gradient's spacing and
+// that of the area-weighted mean gradient at each of its vertices, which sees lines that
+// kink between triangles.
+struct SpacingRatios {
+  std::vector<double> ratio;
+  std::vector<double> level_length; // mm of level lines per step on each triangle
+  double worst = 0.0;
+};
+[[nodiscard]] SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& cl_points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::vector<double>& deformed, double step,
+                                           const PassIntervals& intervals);
+
+// The gradient of the linear function with values vi, vj, vk at the corners, 1/mm.
+[[nodiscard]] Eigen::Vector3d level_gradient(const Eigen::Vector3d& ci, const Eigen::Vector3d& cj,
+                                             const Eigen::Vector3d& ck, double vi, double vj,
+                                             double vk);
+
+// The depth a level at `index` (in units of step / 2^max_insertion_depth) belongs to: 0 for
+// whole planes, 1 for halves, ...
+[[nodiscard]] int level_depth(long index);
+
+} // namespace subfeed::geometry
