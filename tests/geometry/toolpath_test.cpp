@@ -13,6 +13,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 using namespace subfeed;
 using subfeed::testing::TempDir;
@@ -123,4 +124,44 @@ TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um,
   CHECK(baseline.max_scallop <= 1.05 * 0.03);
   CHECK(deformed.cutting_length < baseline.cutting_length);
   CHECK(deformed.uncut_samples * 1000 <= deformed.samples); // at most the odd corner sample
+}
+
+TEST_CASE("faces meshed at different rates still share every point along their edges") {
+  const auto cage = subfeed::testing::grid_cage(5, 5.0, 0.02, 0.01); // 4 x 4 faces
+  const auto surface = surface_of(cage);
+  std::vector<int> rates;
+  for (int f = 0; f < surface.face_count(); ++f) {
+    rates.push_back(f % 3 == 0 ? 7 : (f % 3 == 1 ? 3 : 5));
+  }
+  const auto mesh = geometry::mesh_surface(cage, surface, rates);
+  REQUIRE(mesh);
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : mesh->triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  long once = 0;
+  for (const auto& [edge, n] : uses) {
+    CHECK(n <= 2);
+    once += n == 1 ? 1 : 0;
+  }
+  // Only the 16 cage edges on the outline are open, each cut at its one face's rate.
+  long outline = 0;
+  std::map<std::pair<int, int>, std::vector<int>> faces_of;
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const auto loop = cage.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int a = loop[i], b = loop[(i + 1) % loop.size()];
+      faces_of[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  }
+  for (const auto& [edge, faces] : faces_of) {
+    if (faces.size() == 1) {
+      outline += rates[static_cast<std::size_t>(faces[0])];
+    }
+  }
+  CHECK(once == outline);
+  CHECK(mesh->rate == 7);
 }

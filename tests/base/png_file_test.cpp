@@ -1,0 +1,125 @@
+// The PNG writer checked by reading its file back the way a decoder does: signature, chunk
+// lengths and CRCs, the header, and the pixels recovered from the stored deflate blocks
+// with their Adler-32.
+
+#include "base/png_file.hpp"
+#include "support/temp_dir.hpp"
+
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+using subfeed::RgbImage;
+using subfeed::testing::TempDir;
+
+namespace {
+
+std::uint32_t be32(const std::vector<std::uint8_t>& b, std::size_t at) {
+  return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) |
+         (std::uint32_t{b[at + 2]} << 8) | std::uint32_t{b[at + 3]};
+}
+
+struct Chunk {
+  std::string type;
+  std::vector<std::uint8_t> data;
+};
+
+std::vector<Chunk> read_chunks(const std::vector<std::uint8_t>& file) {
+  const std::vector<std::uint8_t> signature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  REQUIRE(std::vector<std::uint8_t>(file.begin(), file.begin() + 8) == signature);
+  std::vector<Chunk> chunks;
+  std::size_t at = 8;
+  while (at < file.size()) {
+    const std::uint32_t length = be32(file, at);
+    REQUIRE(at + 12 + length <= file.size());
+    const std::uint32_t crc = subfeed::png_crc32(file.data() + at + 4, length + 4);
+    CHECK(crc == be32(file, at + 8 + length));
+    chunks.push_back({std::string(file.begin() + static_cast<std::ptrdiff_t>(at + 4),
+                                  file.begin() + static_cast<std::ptrdiff_t>(at + 8)),
+                      {file.begin() + static_cast<std::ptrdiff_t>(at + 8),
+                       file.begin() + static_cast<std::ptrdiff_t>(at + 8 + length)}});
+    at += 12 + length;
+  }
+  return chunks;
+}
+
+// Inflates a zlib stream made of stored blocks only.
+std::vector<std::uint8_t> inflate_stored(const std::vector<std::uint8_t>& z) {
+  REQUIRE(z.size() >= 6);
+  CHECK((z[0] * 256 + z[1]) % 31 == 0); // the zlib header check
+  std::vector<std::uint8_t> out;
+  std::size_t at = 2;
+  bool last = false;
+  while (!last) {
+    last = (z[at] & 1) != 0;
+    REQUIRE((z[at] & 6) == 0); // BTYPE 00: stored
+    const std::size_t n = z[at + 1] | (z[at + 2] << 8);
+    const std::size_t complement = z[at + 3] | (z[at + 4] << 8);
+    CHECK(n == (~complement & 0xffff));
+    out.insert(out.end(), z.begin() + static_cast<std::ptrdiff_t>(at + 5),
+               z.begin() + static_cast<std::ptrdiff_t>(at + 5 + n));
+    at += 5 + n;
+  }
+  std::uint32_t a = 1, b = 0;
+  for (const auto byte : out) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  CHECK(be32(z, at) == ((b << 16) | a));
+  return out;
+}
+
+} // namespace
+
+TEST_CASE("CRC-32 of the PNG standard's check value") {
+  const std::string text = "123456789";
+  CHECK(subfeed::png_crc32(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()) ==
+        0xcbf43926U);
+}
+
+TEST_CASE("a PNG reads back pixel for pixel, across several deflate blocks") {
+  TempDir dir;
+  RgbImage image(200, 150, 10, 20, 30); // 90,150 bytes of scanlines: two stored blocks
+  for (int y = 0; y < 150; ++y) {
+    for (int x = 0; x < 200; ++x) {
+      image.set(x, y, static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y),
+                static_cast<std::uint8_t>(x ^ y));
+    }
+  }
+  image.set(-1, 5, 0, 0, 0); // off the image: ignored
+  image.set(200, 5, 0, 0, 0);
+  const auto file = dir.path() / "out.png";
+  REQUIRE(subfeed::write_png(file, image));
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+  const auto chunks = read_chunks(bytes);
+  REQUIRE(chunks.size() == 3);
+  CHECK(chunks[0].type == "IHDR");
+  CHECK(be32(chunks[0].data, 0) == 200);
+  CHECK(be32(chunks[0].data, 4) == 150);
+  CHECK(chunks[0].data[8] == 8); // bit depth
+  CHECK(chunks[0].data[9] == 2); // truecolour
+  CHECK(chunks[1].type == "IDAT");
+  CHECK(chunks[2].type == "IEND");
+  const auto raw = inflate_stored(chunks[1].data);
+  REQUIRE(raw.size() == 150 * (1 + 200 * 3));
+  for (std::size_t y = 0; y < 150; ++y) {
+    const std::size_t row = y * (1 + 200 * 3);
+    CHECK(raw[row] == 0); // filter None
+    const std::vector<std::uint8_t> pixels(raw.begin() + static_cast<std::ptrdiff_t>(row + 1),
+                                           raw.begin() + static_cast<std::ptrdiff_t>(row + 601));
+    CHECK(pixels == std::vector<std::uint8_t>(
+                        image.rgb.begin() + static_cast<std::ptrdiff_t>(y * 600),
+                        image.rgb.begin() + static_cast<std::ptrdiff_t>((y + 1) * 600)));
+  }
+}
+
+TEST_CASE("an empty picture is refused and leaves no file") {
+  TempDir dir;
+  const auto file = dir.path() / "none.png";
+  CHECK_FALSE(subfeed::write_png(file, RgbImage(0, 10, 0, 0, 0)));
+  CHECK_FALSE(std::filesystem::exists(file));
+}
