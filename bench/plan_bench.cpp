@@ -1,0 +1,145 @@
+// Planning: time and CL points per second against cage size and scallop target, peak memory,
+// and the path length of every sample part against the ideal bound L* and the iso-planar
+// baseline. Baselines: meshing the limit surface alone (the floor any planner pays), the
+// baseline planner's point rate, the memory of the mesh alone, and `--baseline` paths.
+
+#include "bench_harness.hpp"
+
+#include "cl/cl_writer.hpp"
+#include "geometry/limit_surface.hpp"
+#include "geometry/obj_reader.hpp"
+#include "geometry/path_verifier.hpp"
+#include "geometry/surface_mesh.hpp"
+#include "geometry/toolpath_planner.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <sstream>
+#include <unistd.h>
+
+namespace {
+
+using namespace subfeed;
+
+// An n x n grid cage, 5 mm apart, of gentle waves (radii well above the ball's).
+geometry::Cage wavy_cage(int n) {
+  std::ostringstream obj;
+  obj.precision(10);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      obj << "v " << 5 * i << ' ' << 5 * j << ' ' << 2 * std::sin(0.3 * i) * std::cos(0.2 * j)
+          << '\n';
+    }
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const int v = j * n + i + 1;
+      obj << "f " << v << ' ' << v + 1 << ' ' << v + 1 + n << ' ' << v + n << '\n';
+    }
+  }
+  std::istringstream in(obj.str());
+  return geometry::parse_obj(in, "wavy.obj").value();
+}
+
+struct PlanRun {
+  double seconds = 0.0;
+  geometry::PlanSummary summary;
+};
+
+PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, double radius,
+             double scallop, bool baseline, const std::filesystem::path& out) {
+  geometry::PlanOptions options;
+  options.ball_radius = radius;
+  options.scallop = scallop;
+  options.baseline = baseline;
+  PlanRun run;
+  run.seconds = bench::best_seconds(1, [&] {
+    auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options).value();
+    auto writer = cl::ClWriter::create(out, {"BENCH", {2 * radius, radius}, true}).value();
+    (void)planner.run([&](const cl::ClPose& p) -> Expected<void> {
+      writer.write(p);
+      return {};
+    });
+    (void)writer.finish();
+    run.summary = planner.summary();
+  });
+  return run;
+}
+
+void bench_plan_scaling(const std::filesystem::path& dir) {
+  for (const int n : {11, 23, 33}) {
+    const auto cage = wavy_cage(n);
+    const auto surface = geometry::LimitSurface::build(cage).value();
+    for (const double h : {0.02, 0.005}) {
+      const double chord = std::min(h / 10.0, 4e-4);
+      const double mesh_seconds = bench::best_seconds(1, [&] {
+        const auto rates = geometry::rates_for_tolerance(surface, chord, 96);
+        bench::keep(geometry::mesh_surface(cage, surface, rates));
+      });
+      const auto run = plan(cage, surface, 3.0, h, false, dir / "wavy.cl");
+      bench::report({fmt::format("plan {} faces, H {} mm", cage.face_count(), h), run.seconds, "s",
+                     "meshing the surface alone", mesh_seconds, false});
+      if (n == 33) {
+        const auto iso = plan(cage, surface, 3.0, h, true, dir / "wavy-baseline.cl");
+        bench::report({fmt::format("CL points/s {} faces, H {}", cage.face_count(), h),
+                       static_cast<double>(run.summary.points) / run.seconds, "points/s",
+                       "iso-planar baseline plan",
+                       static_cast<double>(iso.summary.points) / iso.seconds});
+      }
+    }
+  }
+}
+
+void bench_memory(const std::filesystem::path& dir) {
+  const auto cage = wavy_cage(33);
+  const auto surface = geometry::LimitSurface::build(cage).value();
+  const auto mesh = geometry::mesh_surface(cage, surface,
+                                           geometry::rates_for_tolerance(surface, 4e-4, 96));
+  const double mesh_peak = bench::peak_rss_mib();
+  (void)plan(cage, surface, 3.0, 0.005, false, dir / "memory.cl");
+  bench::report({"peak memory, 1,024 faces H 0.005", bench::peak_rss_mib(), "MiB",
+                 "after meshing alone", mesh_peak, false});
+}
+
+void bench_path_lengths(const std::filesystem::path& dir) {
+  struct Part {
+    const char* name;
+    double radius, scallop;
+  };
+  for (const Part part : {Part{"bowl", 3.0, 0.01}, Part{"saddle", 3.0, 0.01},
+                          Part{"dome", 3.0, 0.01}, Part{"ridge", 3.0, 0.01},
+                          Part{"seat", 1.0, 0.005}}) {
+    const auto cage =
+        geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/" + part.name + ".obj")
+            .value();
+    const auto surface = geometry::LimitSurface::build(cage).value();
+    double length[2] = {0.0, 0.0}, ideal[2] = {0.0, 0.0};
+    for (const bool baseline : {false, true}) {
+      const auto file = dir / (std::string(part.name) + (baseline ? "-baseline.cl" : ".cl"));
+      (void)plan(cage, surface, part.radius, part.scallop, baseline, file);
+      geometry::VerifyOptions verify;
+      verify.ball_radius = part.radius;
+      verify.scallop_target = part.scallop;
+      verify.sample_spacing = part.radius / 12.0;
+      const auto report = geometry::verify_path(surface, file, verify).value();
+      length[baseline ? 1 : 0] = report.cutting_length;
+      ideal[baseline ? 1 : 0] = report.ideal_length;
+    }
+    bench::report({fmt::format("L/L* {}", part.name), length[0] / ideal[0], "", "--baseline",
+                   length[1] / ideal[1], false});
+  }
+}
+
+} // namespace
+
+int main() {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("subfeed-plan-bench-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  bench_memory(dir); // first, so the peak it reads is its own
+  bench_plan_scaling(dir);
+  bench_path_lengths(dir);
+  std::filesystem::remove_all(dir);
+  return 0;
+}
