@@ -121,7 +121,6 @@ void bench_path_lengths(const std::filesystem::path& dir) {
       geometry::VerifyOptions verify;
       verify.ball_radius = part.radius;
       verify.scallop_target = part.scallop;
-      verify.sample_spacing = part.radius / 12.0;
       const auto report = geometry::verify_path(surface, file, verify).value();
       length[baseline ? 1 : 0] = report.cutting_length;
       ideal[baseline ? 1 : 0] = report.ideal_length;

@@ -217,20 +217,28 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
     const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
     const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
     const auto tess = surface.tessellate(f, rate);
-    // Each sample stands for a third of the parameter area of the triangles around it, so
-    // points on the face's edges are not counted as whole cells.
-    std::vector<double> cell(tess.uv.size(), 0.0);
+    // Each sample stands for a third of the area of the triangles around it (taken on the
+    // surface, as n-gon faces are parameterised by sub-faces).
+    std::vector<std::optional<LimitSample>> evaluated;
+    for (const auto& uv : tess.uv) {
+      auto e = surface.evaluate_regular(f, uv.x(), uv.y());
+      evaluated.push_back(e ? std::optional<LimitSample>(*e) : std::nullopt);
+    }
+    std::vector<double> share(tess.uv.size(), 0.0);
     for (const auto& t : tess.triangles) {
-      const Eigen::Vector2d e1 = tess.uv[static_cast<std::size_t>(t[1])] - tess.uv[static_cast<std::size_t>(t[0])];
-      const Eigen::Vector2d e2 = tess.uv[static_cast<std::size_t>(t[2])] - tess.uv[static_cast<std::size_t>(t[0])];
-      const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
-      for (const int k : t) {
-        cell[static_cast<std::size_t>(k)] += third;
+      const auto& a = evaluated[static_cast<std::size_t>(t[0])];
+      const auto& b = evaluated[static_cast<std::size_t>(t[1])];
+      const auto& c = evaluated[static_cast<std::size_t>(t[2])];
+      if (a && b && c) {
+        const double third = (b->point - a->point).cross(c->point - a->point).norm() / 6.0;
+        for (const int k : t) {
+          share[static_cast<std::size_t>(k)] += third;
+        }
       }
     }
     for (std::size_t k = 0; k < tess.uv.size(); ++k) {
       const auto& uv = tess.uv[k];
-      const auto s = surface.evaluate_regular(f, uv.x(), uv.y());
+      const auto& s = evaluated[k];
       if (!s) {
         continue;
       }
@@ -253,7 +261,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       points.push_back(s->point);
       gouges.push_back(h.gouge_depth > 1e-3 ? 1 : 0); // the picture marks those over 1 um
       radii.push_back(radius_across(*s, m.near));
-      weights.push_back(s->du.cross(s->dv).norm() * cell[k]);
+      weights.push_back(share[k]);
     }
   }
   std::vector<double> heights;

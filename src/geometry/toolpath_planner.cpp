@@ -59,30 +59,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     planner.cl_points_.push_back(m.points[static_cast<std::size_t>(i)] +
                                  r * m.normals[static_cast<std::size_t>(i)]);
   }
-  std::vector<int> uses(static_cast<std::size_t>(m.vertex_count()) + 1, 0);
-  for (const auto& t : m.triangles) {
-    for (const int v : t) {
-      ++uses[static_cast<std::size_t>(v) + 1];
-    }
-  }
-  std::partial_sum(uses.begin(), uses.end(), uses.begin());
-  planner.vertex_triangle_start_ = uses;
-  planner.vertex_triangles_.resize(static_cast<std::size_t>(uses.back()));
-  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
-    for (const int v : m.triangles[i]) {
-      planner.vertex_triangles_[static_cast<std::size_t>(uses[static_cast<std::size_t>(v)]++)] =
-          static_cast<int>(i);
-    }
-  }
-  for (const auto& t : m.triangles) {
-    const auto& p0 = m.points[static_cast<std::size_t>(t[0])];
-    const auto& p1 = m.points[static_cast<std::size_t>(t[1])];
-    const auto& p2 = m.points[static_cast<std::size_t>(t[2])];
-    planner.centroids_.push_back((p0 + p1 + p2) / 3.0);
-    planner.area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
-    planner.longest_edge_ = std::max(
-        {planner.longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
-  }
+  planner.index_triangles();
   const auto intervals = pass_intervals(m, r, options.scallop, planner.s_);
   const double widest = std::ranges::max(intervals.cl_spacing);
   const double insertion_margin = options.insertion_margin.value_or(widest);
@@ -114,6 +91,35 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   planner.safe_z_ = top + options.clearance;
   planner.link_distance_ = 2.0 * widest + options.clearance;
   return planner;
+}
+
+// Triangles around each vertex (for the clearance check), centroids and area normals (for the
+// tool axis) and the longest edge (how far a vertex search must reach).
+void ToolpathPlanner::index_triangles() {
+  std::vector<int> uses(static_cast<std::size_t>(mesh_.vertex_count()) + 1, 0);
+  for (const auto& t : mesh_.triangles) {
+    for (const int v : t) {
+      ++uses[static_cast<std::size_t>(v) + 1];
+    }
+  }
+  std::partial_sum(uses.begin(), uses.end(), uses.begin());
+  vertex_triangle_start_ = uses;
+  vertex_triangles_.resize(static_cast<std::size_t>(uses.back()));
+  for (std::size_t i = 0; i < mesh_.triangles.size(); ++i) {
+    for (const int v : mesh_.triangles[i]) {
+      vertex_triangles_[static_cast<std::size_t>(uses[static_cast<std::size_t>(v)]++)] =
+          static_cast<int>(i);
+    }
+  }
+  for (const auto& t : mesh_.triangles) {
+    const auto& p0 = mesh_.points[static_cast<std::size_t>(t[0])];
+    const auto& p1 = mesh_.points[static_cast<std::size_t>(t[1])];
+    const auto& p2 = mesh_.points[static_cast<std::size_t>(t[2])];
+    centroids_.push_back((p0 + p1 + p2) / 3.0);
+    area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
+    longest_edge_ = std::max(
+        {longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+  }
 }
 
 void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const {

@@ -95,6 +95,7 @@ private:
     Eigen::Vector3d centre, contact, normal, axis;
   };
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
+  void index_triangles();
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   cut_level(MeshSlicer& slicer, double level, int depth, const PointGrid& design);
