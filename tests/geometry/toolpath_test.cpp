@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 using namespace subfeed;
 using subfeed::testing::TempDir;
@@ -164,4 +165,67 @@ TEST_CASE("faces meshed at different rates still share every point along their e
   }
   CHECK(once == outline);
   CHECK(mesh->rate == 7);
+}
+
+TEST_CASE("curvature on a cylinder-like cage: exact around, zero along the axis") {
+  // A ring of n vertices, radius R, stacked in straight columns: on interior faces the limit
+  // is straight along z and, around, the periodic cubic B-spline of the n-gon, whose
+  // curvature at a column is 2 (1 - cos t) / (R sin^2 t), t = 2 pi / n.
+  constexpr int n = 8, layers = 7;
+  constexpr double radius = 10.0, pitch = 5.0;
+  geometry::Cage cage;
+  cage.source = "cylinder";
+  const double t = 2.0 * std::numbers::pi / n;
+  for (int j = 0; j < layers; ++j) {
+    for (int i = 0; i < n; ++i) {
+      cage.positions.emplace_back(radius * std::cos(i * t), radius * std::sin(i * t), pitch * j);
+    }
+  }
+  for (int j = 0; j + 1 < layers; ++j) {
+    for (int i = 0; i < n; ++i) {
+      cage.face_offsets.push_back(static_cast<int>(cage.face_indices.size()));
+      cage.face_indices.insert(cage.face_indices.end(), {j * n + i, j * n + (i + 1) % n,
+                                                         (j + 1) * n + (i + 1) % n, (j + 1) * n + i});
+      cage.face_sizes.push_back(4);
+      cage.face_lines.push_back(0);
+    }
+  }
+  const auto surface = surface_of(cage);
+  const auto mesh = geometry::mesh_surface(cage, surface, 4);
+  REQUIRE(mesh);
+  const double kappa = 2.0 * (1.0 - std::cos(t)) / (radius * std::sin(t) * std::sin(t));
+  int checked = 0;
+  for (int v = 0; v < mesh->vertex_count(); ++v) {
+    const auto& p = mesh->points[static_cast<std::size_t>(v)];
+    if (std::abs(p.y()) > 1e-9 || p.x() < 0.0 || p.z() < 2 * pitch - 1e-9 ||
+        p.z() > 4 * pitch + 1e-9) {
+      continue; // columns at angle 0 on the interior bands
+    }
+    ++checked;
+    CHECK(p.x() == Approx(radius * (4.0 + 2.0 * std::cos(t)) / 6.0).epsilon(1e-12));
+    CHECK(mesh->normals[static_cast<std::size_t>(v)].x() == Approx(1.0).epsilon(1e-12));
+    CHECK(mesh->radius_along(v, Eigen::Vector3d::UnitY()) == Approx(1.0 / kappa).epsilon(1e-9));
+    CHECK(std::abs(1.0 / mesh->radius_along(v, Eigen::Vector3d::UnitZ())) < 1e-9);
+  }
+  CHECK(checked >= 9);
+}
+
+TEST_CASE("curvature on a sphere-like cage: umbilic at the middle of every cube face") {
+  const auto cage = subfeed::testing::cube_cage();
+  const auto surface = surface_of(cage);
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const auto s = surface.evaluate_regular(f, 0.5, 0.5);
+    REQUIRE(s);
+    // The face's axis is the normal; the other two axes are principal directions.
+    int axis = 0;
+    s->normal.cwiseAbs().maxCoeff(&axis);
+    CHECK(std::abs(s->normal[axis]) == Approx(1.0).epsilon(1e-12));
+    const Eigen::Matrix3d w = geometry::curvature_matrix(*s);
+    const Eigen::Vector3d t1 = Eigen::Vector3d::Unit((axis + 1) % 3);
+    const Eigen::Vector3d t2 = Eigen::Vector3d::Unit((axis + 2) % 3);
+    const double k1 = t1.dot(w * t1), k2 = t2.dot(w * t2);
+    CHECK(k1 < 0.0); // convex seen from outside
+    CHECK(k1 == Approx(k2).epsilon(1e-9));
+    CHECK(std::abs(t1.dot(w * t2)) < 1e-9 * std::abs(k1));
+  }
 }
