@@ -2,6 +2,7 @@
 // and limit-surface evaluation through LimitSurface against OpenSubdiv's Bfr called directly.
 
 #include "bench_harness.hpp"
+#include "wavy_cage.hpp"
 
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
@@ -19,22 +20,8 @@ namespace {
 
 using namespace subfeed;
 
-// A wavy n x n grid cage as OBJ text.
 std::string wavy_grid(int n) {
-  std::ostringstream obj;
-  obj.precision(10);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      obj << "v " << i << ' ' << j << ' ' << std::sin(0.3 * i) * std::cos(0.2 * j) << '\n';
-    }
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    for (int i = 0; i + 1 < n; ++i) {
-      const int v = j * n + i + 1;
-      obj << "f " << v << ' ' << v + 1 << ' ' << v + 1 + n << ' ' << v + n << '\n';
-    }
-  }
-  return obj.str();
+  return bench::wavy_grid_obj(n, 1.0, 1.0);
 }
 
 void bench_obj_reader() {

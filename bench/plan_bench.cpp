@@ -4,6 +4,7 @@
 // baseline planner's point rate, the memory of the mesh alone, and `--baseline` paths.
 
 #include "bench_harness.hpp"
+#include "wavy_cage.hpp"
 
 #include "cl/cl_writer.hpp"
 #include "geometry/limit_surface.hpp"
@@ -22,23 +23,9 @@ namespace {
 
 using namespace subfeed;
 
-// An n x n grid cage, 5 mm apart, of gentle waves (radii well above the ball's).
+// 5 mm apart, waves of 2 mm: radii well above the ball's.
 geometry::Cage wavy_cage(int n) {
-  std::ostringstream obj;
-  obj.precision(10);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      obj << "v " << 5 * i << ' ' << 5 * j << ' ' << 2 * std::sin(0.3 * i) * std::cos(0.2 * j)
-          << '\n';
-    }
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    for (int i = 0; i + 1 < n; ++i) {
-      const int v = j * n + i + 1;
-      obj << "f " << v << ' ' << v + 1 << ' ' << v + 1 + n << ' ' << v + n << '\n';
-    }
-  }
-  std::istringstream in(obj.str());
+  std::istringstream in(bench::wavy_grid_obj(n, 5.0, 2.0));
   return geometry::parse_obj(in, "wavy.obj").value();
 }
 

@@ -94,6 +94,18 @@ void draw_line(RgbImage& image, Eigen::Vector2d a, const Eigen::Vector2d& b) {
   }
 }
 
+// Calls visit(x, y, colour) for every measured cell, y counted from the top of the picture.
+template <class Visit> void for_each_cell(const Raster& r, double max_height, Visit&& visit) {
+  for (int y = 0; y < r.height; ++y) {
+    for (int x = 0; x < r.width; ++x) {
+      const double v = r.values[static_cast<std::size_t>(y * r.width + x)];
+      if (v != -1.0) {
+        visit(x, r.height - 1 - y, colour(v, max_height));
+      }
+    }
+  }
+}
+
 } // namespace
 
 Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture& picture) {
@@ -103,19 +115,12 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
   out.write(fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" "
                         "width=\"{0}\" height=\"{1}\">\n<g shape-rendering=\"crispEdges\">\n",
                         w, h + 30));
-  for (int y = 0; y < r.height; ++y) {
-    for (int x = 0; x < r.width; ++x) {
-      const double v = r.values[static_cast<std::size_t>(y * r.width + x)];
-      if (v == -1.0) {
-        continue;
-      }
-      const auto c = colour(v, picture.max_height);
-      out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
-                            "fill=\"rgb({},{},{})\"/>\n",
-                            x * cell_pixels, (r.height - 1 - y) * cell_pixels, cell_pixels,
-                            cell_pixels, c[0], c[1], c[2]));
-    }
-  }
+  for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
+    out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
+                          "fill=\"rgb({},{},{})\"/>\n",
+                          x * cell_pixels, y * cell_pixels, cell_pixels, cell_pixels, c[0], c[1],
+                          c[2]));
+  });
   out.write("</g>\n<g fill=\"none\" stroke=\"#fff\" stroke-width=\"0.6\">\n");
   for (const auto& pass : picture.passes_xy) {
     std::string pts;
@@ -134,20 +139,13 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
 Expected<void> write_png(const std::filesystem::path& file, const VerifyPicture& picture) {
   const Raster r = rasterise(picture);
   RgbImage image(r.width * cell_pixels, r.height * cell_pixels, 255, 255, 255);
-  for (int y = 0; y < r.height; ++y) {
-    for (int x = 0; x < r.width; ++x) {
-      const double v = r.values[static_cast<std::size_t>(y * r.width + x)];
-      if (v == -1.0) {
-        continue;
-      }
-      const auto c = colour(v, picture.max_height);
-      for (int dy = 0; dy < cell_pixels; ++dy) {
-        for (int dx = 0; dx < cell_pixels; ++dx) {
-          image.set(x * cell_pixels + dx, (r.height - 1 - y) * cell_pixels + dy, c[0], c[1], c[2]);
-        }
+  for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
+    for (int dy = 0; dy < cell_pixels; ++dy) {
+      for (int dx = 0; dx < cell_pixels; ++dx) {
+        image.set(x * cell_pixels + dx, y * cell_pixels + dy, c[0], c[1], c[2]);
       }
     }
-  }
+  });
   for (const auto& pass : picture.passes_xy) {
     for (std::size_t i = 1; i < pass.size(); ++i) {
       draw_line(image, r.pixel(pass[i - 1]), r.pixel(pass[i]));

@@ -3,11 +3,11 @@
 // than 1 um, and on the curved parts a shorter path than the iso-planar baseline with the
 // same worst scallop. Heavy: run in the optimised build only (label `parts`).
 
-#include "cl/cl_writer.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
 #include "geometry/path_verifier.hpp"
 #include "geometry/toolpath_planner.hpp"
+#include "support/plan_to_file.hpp"
 #include "support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
@@ -17,34 +17,19 @@ using subfeed::testing::TempDir;
 
 namespace {
 
-struct Measured {
-  geometry::VerifyReport report;
-  geometry::PlanSummary plan;
-};
-
-Measured plan_and_verify(const geometry::Cage& cage, const geometry::LimitSurface& surface,
-                         double radius, double scallop, bool baseline, const TempDir& dir) {
-  geometry::PlanOptions options;
-  options.ball_radius = radius;
-  options.scallop = scallop;
-  options.baseline = baseline;
-  auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options);
-  REQUIRE(planner);
-  const auto file = dir.path() / (baseline ? "baseline.cl" : "deformed.cl");
-  auto writer = cl::ClWriter::create(file, {"PART", {2 * radius, radius}, true});
-  REQUIRE(writer);
-  REQUIRE(planner->run([&](const cl::ClPose& p) -> Expected<void> {
-    writer->write(p);
-    return {};
-  }));
-  REQUIRE(writer->finish());
+testing::PlannedPath plan_part(const geometry::Cage& cage,
+                               const geometry::LimitSurface& surface, double radius,
+                               double scallop, bool baseline, const TempDir& dir) {
+  geometry::PlanOptions plan;
+  plan.ball_radius = radius;
+  plan.scallop = scallop;
+  plan.baseline = baseline;
   geometry::VerifyOptions verify;
   verify.ball_radius = radius;
   verify.scallop_target = scallop;
   verify.sample_spacing = radius / 12.0;
-  auto report = geometry::verify_path(surface, file, verify);
-  REQUIRE(report);
-  return {*report, planner->summary()};
+  return testing::plan_and_verify(cage, surface, plan, verify,
+                                  dir.path() / (baseline ? "baseline.cl" : "deformed.cl"));
 }
 
 void check_part(const char* name, double radius, std::initializer_list<double> targets,
@@ -55,8 +40,8 @@ void check_part(const char* name, double radius, std::initializer_list<double> t
   REQUIRE(surface);
   TempDir dir;
   for (const double h : targets) {
-    const auto deformed = plan_and_verify(*cage, *surface, radius, h, false, dir);
-    const auto baseline = plan_and_verify(*cage, *surface, radius, h, true, dir);
+    const auto deformed = plan_part(*cage, *surface, radius, h, false, dir);
+    const auto baseline = plan_part(*cage, *surface, radius, h, true, dir);
     const auto& d = deformed.report;
     const auto& b = baseline.report;
     INFO(name << " H " << h << ": deformed max " << d.max_scallop << " gouge " << d.max_gouge

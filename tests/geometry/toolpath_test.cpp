@@ -1,7 +1,6 @@
 // The planner's pieces against exact answers, and whole plans against the independent
 // meter (path_verifier) on a grid bowl whose limit surface is z = a x^2 + b y^2 exactly.
 
-#include "cl/cl_writer.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_slicer.hpp"
@@ -9,6 +8,7 @@
 #include "geometry/surface_mesh.hpp"
 #include "geometry/toolpath_planner.hpp"
 #include "support/grid_cage.hpp"
+#include "support/plan_to_file.hpp"
 #include "support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
@@ -96,23 +96,14 @@ TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um,
     options.scallop = 0.03;
     options.baseline = baseline;
     options.tolerance = 0.001;
-    auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options);
-    REQUIRE(planner);
-    const auto file = dir.path() / (baseline ? "baseline.cl" : "deformed.cl");
-    auto writer = cl::ClWriter::create(file, {"BOWL", {6.0, 3.0}, true});
-    REQUIRE(writer);
-    REQUIRE(planner->run([&](const cl::ClPose& p) -> Expected<void> {
-      writer->write(p);
-      return {};
-    }));
-    REQUIRE(writer->finish());
     geometry::VerifyOptions verify;
     verify.ball_radius = 3.0;
     verify.scallop_target = 0.03;
     verify.sample_spacing = 0.25;
-    auto report = geometry::verify_path(surface, file, verify);
-    REQUIRE(report);
-    return *report;
+    return subfeed::testing::plan_and_verify(
+               cage, surface, options, verify,
+               dir.path() / (baseline ? "baseline.cl" : "deformed.cl"))
+        .report;
   };
   const auto deformed = plan(false);
   const auto baseline = plan(true);
