@@ -255,10 +255,14 @@ TEST_CASE("DNC: modal state words are tracked by group") {
 TEST_CASE("DNC soak: 100,000 blocks with random drain, no overrun, exact delivery", "[pty][slow]") {
   auto o = fast_control();
   o.baud = 0;
-  o.buffer = 1024;
-  o.high_water = 700;
-  o.low_water = 200;
-  o.overrun_tolerance = 64; // at 460800 baud the sender writes 20 characters at a time
+  // At 460800 baud the sender writes 20 characters at a time and 46 a millisecond: the
+  // headroom past the DC3 covers ~30 ms of either side not being scheduled on a loaded
+  // machine. This soak is about exact delivery; the one-character XOFF figure is tested at
+  // 9600 baud.
+  o.buffer = 4096;
+  o.high_water = 2000;
+  o.low_water = 500;
+  o.overrun_tolerance = 1500;
   o.max_block_pause = 40ms;
   o.pause_one_in = 500;
   o.motion.speed = 1e6;
@@ -273,8 +277,9 @@ TEST_CASE("DNC soak: 100,000 blocks with random drain, no overrun, exact deliver
                std::to_string(i % 89) + "\n";
   }
   const auto summary = bench.send(program);
-  REQUIRE(summary);
   const auto stats = bench.sim->stats();
+  INFO("control alarm: " << stats.alarm);
+  REQUIRE(summary);
   CHECK(stats.alarm.empty());
   CHECK(stats.xoff_sent > 10);
   CHECK(stats.executed == blocks_of(program));
