@@ -4,6 +4,7 @@
 #include "support/grid_cage.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 using subfeed::geometry::BoundaryInterpolation;
 using subfeed::geometry::LimitSurface;
@@ -40,4 +41,19 @@ TEST_CASE("the sample seat has the paper's dimensions") {
   CHECK(size.x() == Approx(17.67).margin(1e-3));
   CHECK(size.y() == Approx(11.02).margin(1e-3));
   CHECK(size.z() == Approx(4.23).margin(1e-3));
+}
+
+TEST_CASE("the steepest slope of a tilted plane is its tilt, and of the dome 70 degrees") {
+  auto cage = subfeed::testing::grid_cage(5, 5.0, 0, 0);
+  for (auto& p : cage.positions) {
+    p.z() = 0.5 * p.x(); // an affine cage has an affine limit surface, boundary included
+  }
+  const auto surface = LimitSurface::build(cage).value();
+  const auto s = subfeed::geometry::summarize(cage, surface, 8).value();
+  CHECK(s.steepest_deg == Approx(std::atan(0.5) * 180.0 / 3.14159265358979323846).epsilon(1e-9));
+  const auto dome =
+      subfeed::geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/dome.obj");
+  REQUIRE(dome);
+  const auto d = subfeed::geometry::summarize(*dome, LimitSurface::build(*dome).value(), 16).value();
+  CHECK(d.steepest_deg == Approx(70.0).margin(0.5));
 }
