@@ -60,13 +60,29 @@ std::vector<int> anchors(int n, const std::vector<Edge>& edges, const std::vecto
   return out;
 }
 
+// The normal equations of the edge differences, each anchor held by a penalty.
+Eigen::SparseMatrix<double> normal_matrix(int n, const std::vector<Edge>& edges,
+                                          const std::vector<int>& fixed, double penalty) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(edges.size() * 4 + fixed.size());
+  for (const auto& [a, b] : edges) {
+    entries.emplace_back(a, a, 1.0);
+    entries.emplace_back(b, b, 1.0);
+    entries.emplace_back(a, b, -1.0);
+    entries.emplace_back(b, a, -1.0);
+  }
+  for (const int v : fixed) {
+    entries.emplace_back(v, v, penalty);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  return a;
+}
+
 // Raises eta on the vertices of triangles whose passes lie too far apart, a little past the
-// measured ratio so the solves converge from above. Returns the worst ratio.
-double measure_and_raise(const std::vector<Eigen::Vector3d>& c,
-                         const std::vector<std::array<int, 3>>& triangles,
-                         const std::vector<double>& deformed, double step,
-                         const PassIntervals& intervals, std::vector<double>& eta) {
-  const auto measured = spacing_ratios(c, triangles, deformed, step, intervals);
+// measured ratio so the solves converge from above.
+void raise_eta(const std::vector<std::array<int, 3>>& triangles, const SpacingRatios& measured,
+               std::vector<double>& eta) {
   std::vector<double> raise(eta.size(), 1.0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     for (const int v : triangles[t]) {
@@ -77,7 +93,6 @@ double measure_and_raise(const std::vector<Eigen::Vector3d>& c,
   for (std::size_t v = 0; v < eta.size(); ++v) {
     eta[v] *= raise[v] > 1.0 ? raise[v] * 1.02 : 1.0;
   }
-  return measured.worst;
 }
 
 } // namespace
@@ -117,22 +132,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   for (std::size_t v = 0; v < c.size(); ++v) {
     eta[v] = intervals.reachable[v] ? d.reference / intervals.plane_interval[v] : 1.0;
   }
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(edges.size() * 4 + c.size());
-  for (const auto& [a, b] : edges) {
-    entries.emplace_back(a, a, 1.0);
-    entries.emplace_back(b, b, 1.0);
-    entries.emplace_back(a, b, -1.0);
-    entries.emplace_back(b, a, -1.0);
-  }
   const auto fixed = anchors(n, edges, d.xi);
   const double penalty = 1e6;
-  for (const int v : fixed) {
-    entries.emplace_back(v, v, penalty);
-  }
-  Eigen::SparseMatrix<double> a(n, n);
-  a.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(
+      normal_matrix(n, edges, fixed, penalty));
   if (solver.info() != Eigen::Success) {
     return fail(ErrorCode::bad_input, "the CL surface deformation could not be solved");
   }
@@ -153,8 +156,8 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
     const Eigen::VectorXd x = solver.solve(rhs);
     deformed.assign(x.data(), x.data() + n);
     const auto planes = space_planes(deformed, d.reference);
-    auto insertion = pass_insertion(c, triangles, deformed, planes.step, intervals,
-                                    insertion_margin, allowance);
+    const auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
+    auto insertion = pass_insertion(c, triangles, measured, insertion_margin, allowance);
     if (insertion.predicted_length < cheapest) {
       cheapest = insertion.predicted_length;
       d.deformed = deformed;
@@ -163,9 +166,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
       d.insertion = std::move(insertion);
       d.chosen = d.iterations;
     }
-    if (measure_and_raise(c, triangles, deformed, planes.step, intervals, eta) <= 1.005) {
+    if (measured.worst <= 1.005) {
       break;
     }
+    raise_eta(triangles, measured, eta);
   }
   d.iterations = std::min(d.iterations, max_iterations);
   return d;

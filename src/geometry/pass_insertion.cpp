@@ -106,8 +106,14 @@ PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
                              const std::vector<std::array<int, 3>>& triangles,
                              const std::vector<double>& deformed, double step,
                              const PassIntervals& intervals, double margin, double allowance) {
+  return pass_insertion(c, triangles, spacing_ratios(c, triangles, deformed, step, intervals),
+                        margin, allowance);
+}
+
+PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
+                             const std::vector<std::array<int, 3>>& triangles,
+                             const SpacingRatios& measured, double margin, double allowance) {
   PassInsertion out;
-  const auto measured = spacing_ratios(c, triangles, deformed, step, intervals);
   out.worst_ratio = measured.worst;
   out.depth.assign(triangles.size(), 0);
   double edge_sum = 0.0;

@@ -33,11 +33,7 @@ struct PassInsertion {
 // Deepest insertion: passes at 1/16 of the plane step.
 inline constexpr int max_insertion_depth = 4;
 
-[[nodiscard]] PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& cl_points,
-                                           const std::vector<std::array<int, 3>>& triangles,
-                                           const std::vector<double>& deformed, double step,
-                                           const PassIntervals& intervals, double margin,
-                                           double allowance);
+
 
 // How far apart the level lines of `deformed` (spaced `step`) lie on each triangle of the CL
 // mesh c against the least spacing its vertices need (> 1: too far apart); 0 where
@@ -58,6 +54,17 @@ struct SpacingRatios {
 [[nodiscard]] Eigen::Vector3d level_gradient(const Eigen::Vector3d& ci, const Eigen::Vector3d& cj,
                                              const Eigen::Vector3d& ck, double vi, double vj,
                                              double vk);
+
+[[nodiscard]] PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& cl_points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::vector<double>& deformed, double step,
+                                           const PassIntervals& intervals, double margin,
+                                           double allowance);
+// The same from spacing ratios already measured.
+[[nodiscard]] PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& cl_points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const SpacingRatios& measured, double margin,
+                                           double allowance);
 
 // The depth a level at `index` (in units of step / 2^max_insertion_depth) belongs to: 0 for
 // whole planes, 1 for halves, ...
