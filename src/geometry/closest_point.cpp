@@ -1,6 +1,15 @@
 #include "geometry/closest_point.hpp"
 
+#include <algorithm>
+
 namespace subfeed::geometry {
+
+Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                   const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  return length2 > 0.0 ? a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab : a;
+}
 
 Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                     const Eigen::Vector3d& b, const Eigen::Vector3d& c) {

@@ -1,5 +1,6 @@
 #include "geometry/path_verifier.hpp"
 
+#include "geometry/closest_point.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/scallop_meter.hpp"
 #include "geometry/step_over.hpp"
@@ -108,8 +109,7 @@ std::optional<Eigen::Vector3d> across_nearest(const Eigen::Vector3d& p, const Ei
     if (d.squaredNorm() <= 0.0) {
       continue;
     }
-    const double u = std::clamp((p - c.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    const double dist = (c.a + u * d - p).norm();
+    const double dist = (closest_on_segment(p, c.a, c.b) - p).norm();
     const Eigen::Vector3d across = n.cross(d);
     if (dist < best && across.norm() > 1e-12) {
       best = dist;

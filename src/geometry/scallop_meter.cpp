@@ -1,5 +1,7 @@
 #include "geometry/scallop_meter.hpp"
 
+#include "geometry/closest_point.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -7,13 +9,6 @@
 namespace subfeed::geometry {
 
 namespace {
-
-double distance_to_segment(const Eigen::Vector3d& p, const Capsule& c) {
-  const Eigen::Vector3d ab = c.b - c.a;
-  const double length2 = ab.squaredNorm();
-  const double u = length2 > 0.0 ? std::clamp((p - c.a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (c.a + u * ab)).norm();
-}
 
 // Smallest root >= 0 of a t^2 + b t + c = 0, computed without cancellation.
 std::optional<double> first_root(double a, double b, double c) {
@@ -73,7 +68,7 @@ ScallopSample measure_scallop(const Eigen::Vector3d& p, const Eigen::Vector3d& n
   ScallopSample sample;
   double bound = max_height;
   for (const Capsule& c : capsules) {
-    const double gap = distance_to_segment(p, c) - c.radius;
+    const double gap = (p - closest_on_segment(p, c.a, c.b)).norm() - c.radius;
     if (gap < 0.0) {
       sample.gouge_depth = std::max(sample.gouge_depth, -gap);
       sample.height = 0.0;

@@ -18,14 +18,6 @@ namespace {
 
 constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along a pass
 
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::MoveKind kind,
                    double feed) {
   return {{tip.x(), tip.y(), tip.z()}, {axis.x(), axis.y(), axis.z()}, kind, feed, 0};
@@ -160,7 +152,9 @@ std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& p
     bool fits = true;
     for (std::size_t k = anchor + 1; k < j && fits; ++k) {
       // Ball centres, not tips: the centre path is what decides the cut.
-      fits = segment_distance(pass[k].centre, pass[anchor].centre, pass[j].centre) <= tol;
+      fits = (closest_on_segment(pass[k].centre, pass[anchor].centre, pass[j].centre) -
+              pass[k].centre)
+                 .norm() <= tol;
       const double t = static_cast<double>(k - anchor) / static_cast<double>(j - anchor);
       const Eigen::Vector3d mid = ((1 - t) * pass[anchor].axis + t * pass[j].axis).normalized();
       fits = fits && std::acos(std::clamp(mid.dot(pass[k].axis), -1.0, 1.0)) <= axis_tolerance_rad;

@@ -39,3 +39,12 @@ TEST_CASE("closest point: vertex, edge and face regions exactly") {
   CHECK((closest_on_triangle({0.2, 0.3, -5}, a, b, c) - Eigen::Vector3d(0.2, 0.3, 0)).norm() <
         1e-15);
 }
+
+TEST_CASE("closest point on a segment: the ends, the inside, and a zero-length segment") {
+  using subfeed::geometry::closest_on_segment;
+  const Eigen::Vector3d a(0, 0, 0), b(2, 0, 0);
+  CHECK((closest_on_segment({-1, 1, 0}, a, b) - a).norm() < 1e-15);
+  CHECK((closest_on_segment({3, -1, 2}, a, b) - b).norm() < 1e-15);
+  CHECK((closest_on_segment({0.5, 4, -3}, a, b) - Eigen::Vector3d(0.5, 0, 0)).norm() < 1e-15);
+  CHECK((closest_on_segment({5, 5, 5}, a, a) - a).norm() < 1e-15);
+}

@@ -1,11 +1,15 @@
 #pragma once
-// The point of a triangle nearest to a point in space (Voronoi regions of vertices, edges
+// The points of a segment and of a triangle nearest to a point in space. The triangle's (Voronoi regions of vertices, edges
 // and face, as in Ericson, Real-Time Collision Detection, 5.1.5). A degenerate triangle's
 // answer is the nearest point of its edges where the regions decide it, else its first vertex.
 
 #include <Eigen/Core>
 
 namespace subfeed::geometry {
+
+// A zero-length segment answers its one point.
+[[nodiscard]] Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                                 const Eigen::Vector3d& b);
 
 [[nodiscard]] Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p,
                                                   const Eigen::Vector3d& a,
