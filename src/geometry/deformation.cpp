@@ -1,5 +1,6 @@
 #include "geometry/deformation.hpp"
 
+#include "geometry/mesh_edges.hpp"
 #include "geometry/pass_insertion.hpp"
 
 #include <Eigen/Geometry>
@@ -13,24 +14,9 @@ namespace subfeed::geometry {
 
 namespace {
 
-using Edge = std::pair<int, int>;
-
-std::vector<Edge> unique_edges(const std::vector<std::array<int, 3>>& triangles) {
-  std::vector<Edge> edges;
-  edges.reserve(triangles.size() * 3);
-  for (const auto& t : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  }
-  std::ranges::sort(edges);
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
 // One vertex per connected piece: the one with the least xi.
-std::vector<int> anchors(int n, const std::vector<Edge>& edges, const std::vector<double>& xi) {
+std::vector<int> anchors(int n, const std::vector<MeshEdge>& edges,
+                         const std::vector<double>& xi) {
   std::vector<int> parent(static_cast<std::size_t>(n));
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](int v) {
@@ -41,8 +27,8 @@ std::vector<int> anchors(int n, const std::vector<Edge>& edges, const std::vecto
     }
     return v;
   };
-  for (const auto& [a, b] : edges) {
-    parent[static_cast<std::size_t>(find(a))] = find(b);
+  for (const auto& e : edges) {
+    parent[static_cast<std::size_t>(find(e.a))] = find(e.b);
   }
   std::vector<int> best(static_cast<std::size_t>(n), -1);
   for (int v = 0; v < n; ++v) {
@@ -61,15 +47,15 @@ std::vector<int> anchors(int n, const std::vector<Edge>& edges, const std::vecto
 }
 
 // The normal equations of the edge differences, each anchor held by a penalty.
-Eigen::SparseMatrix<double> normal_matrix(int n, const std::vector<Edge>& edges,
+Eigen::SparseMatrix<double> normal_matrix(int n, const std::vector<MeshEdge>& edges,
                                           const std::vector<int>& fixed, double penalty) {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(edges.size() * 4 + fixed.size());
-  for (const auto& [a, b] : edges) {
-    entries.emplace_back(a, a, 1.0);
-    entries.emplace_back(b, b, 1.0);
-    entries.emplace_back(a, b, -1.0);
-    entries.emplace_back(b, a, -1.0);
+  for (const auto& e : edges) {
+    entries.emplace_back(e.a, e.a, 1.0);
+    entries.emplace_back(e.b, e.b, 1.0);
+    entries.emplace_back(e.a, e.b, -1.0);
+    entries.emplace_back(e.b, e.a, -1.0);
   }
   for (const int v : fixed) {
     entries.emplace_back(v, v, penalty);
@@ -127,7 +113,7 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
                                      double allowance) {
   Deformation d = iso_planar(c, s, intervals);
   const int n = static_cast<int>(c.size());
-  const auto edges = unique_edges(triangles);
+  const auto edges = mesh_edges(triangles);
   std::vector<double> eta(c.size());
   for (std::size_t v = 0; v < c.size(); ++v) {
     eta[v] = intervals.reachable[v] ? d.reference / intervals.plane_interval[v] : 1.0;
@@ -144,11 +130,11 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   double cheapest = std::numeric_limits<double>::infinity();
   for (d.iterations = 1; d.iterations <= max_iterations; ++d.iterations) {
     rhs.setZero();
-    for (const auto& [i, j] : edges) {
-      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    for (const auto& e : edges) {
+      const auto ui = static_cast<std::size_t>(e.a), uj = static_cast<std::size_t>(e.b);
       const double target = 0.5 * (eta[ui] + eta[uj]) * (d.xi[uj] - d.xi[ui]);
-      rhs[j] += target;
-      rhs[i] -= target;
+      rhs[e.b] += target;
+      rhs[e.a] -= target;
     }
     for (const int v : fixed) {
       rhs[v] += penalty * d.xi[static_cast<std::size_t>(v)];

@@ -1,13 +1,13 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include "geometry/closest_point.hpp"
+#include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/point_grid.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
@@ -297,19 +297,12 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::boundary_passes(const PointGrid& design) {
   // Edges of one triangle only, in that triangle's winding, chained end to start.
-  std::map<std::pair<int, int>, int> uses;
-  for (const auto& t : mesh_.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  }
+  const auto edges = mesh_edges(mesh_.triangles);
   std::unordered_map<int, int> next;
   for (const auto& t : mesh_.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      if (uses[{std::min(a, b), std::max(a, b)}] == 1) {
-        next[a] = b;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (triangles_on_edge(edges, t[k], t[(k + 1) % 3]) == 1) {
+        next[t[k]] = t[(k + 1) % 3];
       }
     }
   }

@@ -3,6 +3,7 @@
 
 #include "geometry/deformation.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/path_verifier.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -219,4 +220,15 @@ TEST_CASE("curvature on a sphere-like cage: umbilic at the middle of every cube 
     CHECK(k1 == Approx(k2).epsilon(1e-9));
     CHECK(std::abs(t1.dot(w * t2)) < 1e-9 * std::abs(k1));
   }
+}
+
+TEST_CASE("mesh edges: each once, sorted, with the triangles on it") {
+  const std::vector<std::array<int, 3>> triangles{{0, 1, 2}, {2, 1, 3}};
+  const auto edges = geometry::mesh_edges(triangles);
+  REQUIRE(edges.size() == 5);
+  CHECK(std::ranges::is_sorted(edges, {}, &geometry::MeshEdge::key));
+  CHECK(geometry::triangles_on_edge(edges, 2, 1) == 2);
+  CHECK(geometry::triangles_on_edge(edges, 0, 1) == 1);
+  CHECK(geometry::triangles_on_edge(edges, 3, 2) == 1);
+  CHECK(geometry::triangles_on_edge(edges, 0, 3) == 0);
 }
