@@ -221,8 +221,6 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
   return {};
 }
 
-// Whether a design vertex lies closer to the ball centre than sqrt(limit2): the ball would
-// cut below the surface there.
 double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
                                       const Eigen::Vector3d& dir) const {
   const double r = options_.ball_radius;

@@ -1,19 +1,22 @@
 #pragma once
 // Constant-scallop tool paths on a limit surface by CL-surface deformation (Yuan & Shao
 // 2012, METHOD.md §1-4), produced one pass at a time:
-//  1. the limit surface meshed within a chordal tolerance well under the scallop target;
+//  1. the limit surface meshed within a chordal tolerance well under the scallop target,
+//     each cage face at its own rate;
 //  2. the CL surface: ball centres c = p + r n on that mesh;
 //  3. per CL vertex the plane interval that leaves exactly the target scallop;
 //  4. the deformation along the slicing normal (sparse least squares, then measured and
-//     refined until no triangle's passes lie farther apart than it needs);
-//  5. equally spaced planes in the deformed space, each slice mapped back exactly;
+//     refined; of all solves the one whose path is shortest is kept: deformation.hpp);
+//  5. equally spaced planes in the deformed space, each slice mapped back exactly, and
+//     passes at fractions of a plane step where the kept solve still leaves them too far
+//     apart (pass_insertion.hpp);
 //  6. the tool axis from area-weighted triangle normals within a radius, smoothed along
 //     the pass (or fixed vertical for three axes);
 //  7. every pass point lifted along the surface normal until the ball clears the design
 //     mesh (hollows narrower than the ball, concave creases: the ball rides over them), and
 //     cleared midpoints inserted where the pass turns so sharply that the ball between two
 //     clear points would cut in;
-//  8. points along a pass reduced to a chordal tolerance; passes zig-zag or one way, linked
+//  8. points along a pass reduced to half the chordal tolerance; passes zig-zag or one way, linked
 //     by a retract along the tool axis, a rapid and a plunge; last, one pass along every
 //     boundary of the surface, which the slicing planes meet at an angle.
 // With `baseline` the planes are spaced evenly at the smallest interval instead (plain
