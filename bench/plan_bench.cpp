@@ -81,8 +81,8 @@ void bench_plan_scaling(const std::filesystem::path& dir) {
 void bench_memory(const std::filesystem::path& dir) {
   const auto cage = wavy_cage(33);
   const auto surface = geometry::LimitSurface::build(cage).value();
-  const auto mesh = geometry::mesh_surface(cage, surface,
-                                           geometry::rates_for_tolerance(surface, 4e-4, 96));
+  const auto mesh =
+      geometry::mesh_surface(cage, surface, geometry::rates_for_tolerance(surface, 4e-4, 96));
   const double mesh_peak = bench::peak_rss_mib();
   (void)plan(cage, surface, 3.0, 0.005, false, dir / "memory.cl");
   bench::report({"peak memory, 1,024 faces H 0.005", bench::peak_rss_mib(), "MiB",
@@ -94,9 +94,9 @@ void bench_path_lengths(const std::filesystem::path& dir) {
     const char* name;
     double radius, scallop;
   };
-  for (const Part part : {Part{"bowl", 3.0, 0.01}, Part{"saddle", 3.0, 0.01},
-                          Part{"dome", 3.0, 0.01}, Part{"ridge", 3.0, 0.01},
-                          Part{"seat", 1.0, 0.005}}) {
+  for (const Part part :
+       {Part{"bowl", 3.0, 0.01}, Part{"saddle", 3.0, 0.01}, Part{"dome", 3.0, 0.01},
+        Part{"ridge", 3.0, 0.01}, Part{"seat", 1.0, 0.005}}) {
     const auto cage =
         geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/" + part.name + ".obj")
             .value();
@@ -120,8 +120,8 @@ void bench_path_lengths(const std::filesystem::path& dir) {
 } // namespace
 
 int main() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("subfeed-plan-bench-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("subfeed-plan-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   bench_memory(dir); // first, so the peak it reads is its own
   bench_plan_scaling(dir);

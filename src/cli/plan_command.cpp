@@ -155,7 +155,8 @@ void add_plan_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
-  cmd->add_option("--refine", o->refine, "Most deformation solves while measured spacing exceeds the need")
+  cmd->add_option("--refine", o->refine,
+                  "Most deformation solves while measured spacing exceeds the need")
       ->check(CLI::Range(1, 100));
   cmd->add_option("-o,--output", o->output, "CL data to write (default: CAGE.cl)");
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_plan(*o, log); }; });

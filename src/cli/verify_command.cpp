@@ -1,5 +1,5 @@
-// `subfeed verify CAGE.obj PART.cl --tool ball:D [--svg out.svg] [--png out.png]`: the independent scallop
-// measurement of a path on its surface (geometry/path_verifier.hpp).
+// `subfeed verify CAGE.obj PART.cl --tool ball:D [--svg out.svg] [--png out.png]`: the independent
+// scallop measurement of a path on its surface (geometry/path_verifier.hpp).
 
 #include "command.hpp"
 #include "tool_spec.hpp"
@@ -49,7 +49,8 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
       "  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
       "percentile {:.6f} mm",
       r.max_scallop, r.max_at.x(), r.max_at.y(), r.max_at.z(), r.mean_scallop, r.p99_scallop));
-  log.info(fmt::format("  gouges {} samples deeper than 0.1 um, deepest {:.6f} mm{}", r.gouges, r.max_gouge,
+  log.info(fmt::format("  gouges {} samples deeper than 0.1 um, deepest {:.6f} mm{}", r.gouges,
+                       r.max_gouge,
                        r.gouges > 0 ? fmt::format(" (near {:.3f}, {:.3f}, {:.3f})", r.gouge_at.x(),
                                                   r.gouge_at.y(), r.gouge_at.z())
                                     : std::string()));
@@ -59,8 +60,9 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
   for (const auto& picture : {o.svg, o.png}) {
     if (!picture.empty()) {
-      log.info("  picture: " + picture +
-               " (top view; scallop blue = 0 to red = max, black = gouge over 1 um, white = passes)");
+      log.info(
+          "  picture: " + picture +
+          " (top view; scallop blue = 0 to red = max, black = gouge over 1 um, white = passes)");
     }
   }
   return {};

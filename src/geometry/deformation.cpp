@@ -15,8 +15,7 @@ namespace subfeed::geometry {
 namespace {
 
 // One vertex per connected piece: the one with the least xi.
-std::vector<int> anchors(int n, const std::vector<MeshEdge>& edges,
-                         const std::vector<double>& xi) {
+std::vector<int> anchors(int n, const std::vector<MeshEdge>& edges, const std::vector<double>& xi) {
   std::vector<int> parent(static_cast<std::size_t>(n));
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](int v) {
@@ -90,7 +89,8 @@ PlaneSpacing space_planes(const std::vector<double>& deformed, double reference)
   const auto [lo, hi] = std::ranges::minmax_element(deformed);
   const double range = *hi - *lo;
   const double inset = 1e-6 * std::max(range, 1.0);
-  const long planes = std::max(2L, static_cast<long>(std::ceil((range - 2 * inset) / reference)) + 1);
+  const long planes =
+      std::max(2L, static_cast<long>(std::ceil((range - 2 * inset) / reference)) + 1);
   return {*lo + inset, (range - 2 * inset) / static_cast<double>(planes - 1), planes};
 }
 

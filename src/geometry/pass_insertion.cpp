@@ -121,8 +121,7 @@ PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
     const auto [i, j, k] = corners(triangles[t]);
     edge_sum += (c[j] - c[i]).norm();
     int d = 0;
-    while (d < max_insertion_depth &&
-           measured.ratio[t] > std::ldexp(1.0, d) * (1.0 + allowance)) {
+    while (d < max_insertion_depth && measured.ratio[t] > std::ldexp(1.0, d) * (1.0 + allowance)) {
       ++d;
     }
     out.depth[t] = static_cast<unsigned char>(d);

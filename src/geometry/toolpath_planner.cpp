@@ -109,8 +109,7 @@ void ToolpathPlanner::index_triangles() {
     const auto& p2 = mesh_.points[static_cast<std::size_t>(t[2])];
     centroids_.push_back((p0 + p1 + p2) / 3.0);
     area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
-    longest_edge_ = std::max(
-        {longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+    longest_edge_ = std::max({longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
   }
 }
 
@@ -152,9 +151,9 @@ std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& p
     bool fits = true;
     for (std::size_t k = anchor + 1; k < j && fits; ++k) {
       // Ball centres, not tips: the centre path is what decides the cut.
-      fits = (closest_on_segment(pass[k].centre, pass[anchor].centre, pass[j].centre) -
-              pass[k].centre)
-                 .norm() <= tol;
+      fits =
+          (closest_on_segment(pass[k].centre, pass[anchor].centre, pass[j].centre) - pass[k].centre)
+              .norm() <= tol;
       const double t = static_cast<double>(k - anchor) / static_cast<double>(j - anchor);
       const Eigen::Vector3d mid = ((1 - t) * pass[anchor].axis + t * pass[j].axis).normalized();
       fits = fits && std::acos(std::clamp(mid.dot(pass[k].axis), -1.0, 1.0)) <= axis_tolerance_rad;
@@ -222,7 +221,7 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
 }
 
 double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
-                                      const Eigen::Vector3d& dir) const {
+                                       const Eigen::Vector3d& dir) const {
   const double r = options_.ball_radius;
   // A triangle inside the ball has a vertex within r plus its longest edge of the centre.
   const double reach = r + longest_edge_;
@@ -235,7 +234,8 @@ double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vec
     design.within(at, reach, [&](int v) {
       const auto u = static_cast<std::size_t>(v);
       for (int k = vertex_triangle_start_[u]; k < vertex_triangle_start_[u + 1]; ++k) {
-        const auto& t = mesh_.triangles[static_cast<std::size_t>(vertex_triangles_[static_cast<std::size_t>(k)])];
+        const auto& t = mesh_.triangles[static_cast<std::size_t>(
+            vertex_triangles_[static_cast<std::size_t>(k)])];
         const Eigen::Vector3d m =
             at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
                                      mesh_.points[static_cast<std::size_t>(t[1])],

@@ -3,8 +3,10 @@
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
 
 using subfeed::testing::run_process;
 using subfeed::testing::TempDir;
@@ -63,4 +65,27 @@ TEST_CASE("verify refuses CL data without a cutting move") {
       {bin, "verify", source_dir + "/examples/plane.obj", cl.string(), "--tool", "ball:6"});
   CHECK(r.exit_code == 2);
   CHECK(r.err == "subfeed: error: " + cl.string() + ": no cutting moves in the CL data\n");
+}
+
+TEST_CASE("verify writes a PNG, and refuses an unwritable one in one line without leaving a file") {
+  TempDir dir;
+  const auto cl = dir.write("line.cl", "UNITS/MM\nCUTTER/6,3\nMULTAX/ON\nFEDRAT/500\n"
+                                       "GOTO/-5,0,0,0,0,1\nGOTO/5,0,0,0,0,1\nFINI\n");
+  const auto cage = source_dir + "/examples/plane.obj";
+  const auto png = dir.path() / "plane.png";
+  const auto ok = run_process({bin, "verify", cage, cl.string(), "--tool", "ball:6", "--spacing",
+                               "2", "--png", png.string()});
+  CHECK(ok.exit_code == 0);
+  std::ifstream in(png, std::ios::binary);
+  std::string signature(8, '\0');
+  in.read(signature.data(), 8);
+  CHECK(signature == "\x89PNG\r\n\x1a\n");
+  const auto missing = dir.path() / "no-such-dir" / "plane.png";
+  const auto bad = run_process({bin, "verify", cage, cl.string(), "--tool", "ball:6", "--spacing",
+                                "2", "--png", missing.string()});
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.starts_with("subfeed: error: "));
+  CHECK(bad.err.find(missing.string()) != std::string::npos);
+  CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  CHECK_FALSE(std::filesystem::exists(missing));
 }

@@ -66,13 +66,13 @@ TEST_CASE("spacing ratio of a uniform field is exact, and the predicted length i
   for (const double r : ratios.ratio) {
     CHECK(r == Approx(0.2 / 0.25).epsilon(1e-12));
   }
-  const auto none = pass_insertion(g.points, g.triangles, phi, 0.1, needing(phi.size(), 0.25),
-                                   0.1, 0.0);
+  const auto none =
+      pass_insertion(g.points, g.triangles, phi, 0.1, needing(phi.size(), 0.25), 0.1, 0.0);
   CHECK(none.max_depth == 0);
   CHECK(none.predicted_length == Approx(2.0 * 2.0 / 0.2).epsilon(1e-12)); // 10 lines of 2 mm
   // Need 0.07: lines 0.2 apart need two halvings (0.05 <= 0.07 < 0.1).
-  const auto two = pass_insertion(g.points, g.triangles, phi, 0.1, needing(phi.size(), 0.07),
-                                  0.1, 0.0);
+  const auto two =
+      pass_insertion(g.points, g.triangles, phi, 0.1, needing(phi.size(), 0.07), 0.1, 0.0);
   CHECK(two.max_depth == 2);
   CHECK(two.predicted_length == Approx(4 * 20.0).epsilon(1e-12));
 }

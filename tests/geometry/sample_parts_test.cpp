@@ -17,9 +17,8 @@ using subfeed::testing::TempDir;
 
 namespace {
 
-testing::PlannedPath plan_part(const geometry::Cage& cage,
-                               const geometry::LimitSurface& surface, double radius,
-                               double scallop, bool baseline, const TempDir& dir) {
+testing::PlannedPath plan_part(const geometry::Cage& cage, const geometry::LimitSurface& surface,
+                               double radius, double scallop, bool baseline, const TempDir& dir) {
   geometry::PlanOptions plan;
   plan.ball_radius = radius;
   plan.scallop = scallop;

@@ -54,6 +54,7 @@ TEST_CASE("the steepest slope of a tilted plane is its tilt, and of the dome 70 
   const auto dome =
       subfeed::geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/dome.obj");
   REQUIRE(dome);
-  const auto d = subfeed::geometry::summarize(*dome, LimitSurface::build(*dome).value(), 16).value();
+  const auto d =
+      subfeed::geometry::summarize(*dome, LimitSurface::build(*dome).value(), 16).value();
   CHECK(d.steepest_deg == Approx(70.0).margin(0.5));
 }

@@ -101,9 +101,9 @@ TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um,
     verify.ball_radius = 3.0;
     verify.scallop_target = 0.03;
     verify.sample_spacing = 0.25;
-    return subfeed::testing::plan_and_verify(
-               cage, surface, options, verify,
-               dir.path() / (baseline ? "baseline.cl" : "deformed.cl"))
+    return subfeed::testing::plan_and_verify(cage, surface, options, verify,
+                                             dir.path() /
+                                                 (baseline ? "baseline.cl" : "deformed.cl"))
         .report;
   };
   const auto deformed = plan(false);
@@ -176,8 +176,9 @@ TEST_CASE("curvature on a cylinder-like cage: exact around, zero along the axis"
   for (int j = 0; j + 1 < layers; ++j) {
     for (int i = 0; i < n; ++i) {
       cage.face_offsets.push_back(static_cast<int>(cage.face_indices.size()));
-      cage.face_indices.insert(cage.face_indices.end(), {j * n + i, j * n + (i + 1) % n,
-                                                         (j + 1) * n + (i + 1) % n, (j + 1) * n + i});
+      cage.face_indices.insert(
+          cage.face_indices.end(),
+          {j * n + i, j * n + (i + 1) % n, (j + 1) * n + (i + 1) % n, (j + 1) * n + i});
       cage.face_sizes.push_back(4);
       cage.face_lines.push_back(0);
     }

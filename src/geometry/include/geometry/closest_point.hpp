@@ -1,7 +1,8 @@
 #pragma once
-// The points of a segment and of a triangle nearest to a point in space. The triangle's (Voronoi regions of vertices, edges
-// and face, as in Ericson, Real-Time Collision Detection, 5.1.5). A degenerate triangle's
-// answer is the nearest point of its edges where the regions decide it, else its first vertex.
+// The points of a segment and of a triangle nearest to a point in space. The triangle's (Voronoi
+// regions of vertices, edges and face, as in Ericson, Real-Time Collision Detection, 5.1.5). A
+// degenerate triangle's answer is the nearest point of its edges where the regions decide it, else
+// its first vertex.
 
 #include <Eigen/Core>
 

@@ -38,10 +38,10 @@ struct Deformation {
   std::vector<double> deformed; // xi' per CL vertex, mm
   double reference = 0.0;       // plane spacing in xi', mm
   PlaneSpacing planes;
-  PassInsertion insertion;      // where passes between the planes are still needed
-  int iterations = 0;           // solves made
-  int chosen = 0;               // the solve kept (1-based)
-  double worst_ratio = 0.0;     // largest measured/needed spacing of the kept solve
+  PassInsertion insertion;  // where passes between the planes are still needed
+  int iterations = 0;       // solves made
+  int chosen = 0;           // the solve kept (1-based)
+  double worst_ratio = 0.0; // largest measured/needed spacing of the kept solve
 };
 
 [[nodiscard]] Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,

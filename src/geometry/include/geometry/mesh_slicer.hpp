@@ -30,9 +30,8 @@ public:
   // polyline is open where the mesh ends and closed (first point repeated) around holes.
   // With `depth`, only triangles t with depth[t] >= min_depth are cut, and polylines also
   // end where that region ends.
-  [[nodiscard]] std::vector<SlicePolyline> slice(double level,
-                                                 const std::vector<unsigned char>* depth = nullptr,
-                                                 int min_depth = 0);
+  [[nodiscard]] std::vector<SlicePolyline>
+  slice(double level, const std::vector<unsigned char>* depth = nullptr, int min_depth = 0);
 
 private:
   const std::vector<std::array<int, 3>>* triangles_;

@@ -33,8 +33,6 @@ struct PassInsertion {
 // Deepest insertion: passes at 1/16 of the plane step.
 inline constexpr int max_insertion_depth = 4;
 
-
-
 // How far apart the level lines of `deformed` (spaced `step`) lie on each triangle of the CL
 // mesh c against the least spacing its vertices need (> 1: too far apart); 0 where
 // unreachable or no level crosses. Per triangle the larger of its own gradient's spacing and

@@ -100,8 +100,8 @@ private:
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
   void index_triangles();
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
-  [[nodiscard]] std::vector<std::vector<PassPoint>>
-  cut_level(MeshSlicer& slicer, double level, int depth, const PointGrid& design);
+  [[nodiscard]] std::vector<std::vector<PassPoint>> cut_level(MeshSlicer& slicer, double level,
+                                                              int depth, const PointGrid& design);
   // How far the ball centre must move along `dir` until no triangle of the design mesh
   // reaches inside the ball, mm.
   [[nodiscard]] double clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
