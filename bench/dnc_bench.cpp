@@ -6,6 +6,7 @@
 
 #include "bench_harness.hpp"
 
+#include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
 #include "sim/fanuc_sim.hpp"
 #include "sim/pty.hpp"

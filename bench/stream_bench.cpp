@@ -8,6 +8,7 @@
 
 #include "bench_harness.hpp"
 
+#include "drivers/gcode_source.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/serial_port.hpp"
 #include "sim/grbl_sim.hpp"

@@ -11,6 +11,21 @@ bool iso840_character(unsigned char c) {
          c == '=' || c == '%' || c == ':';
 }
 
+Expected<void> check_tape_block(std::string_view text, const Where& where) {
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (!iso840_character(c)) {
+      char shown[24];
+      std::snprintf(shown, sizeof shown, std::isprint(c) != 0 ? "'%c'" : "byte 0x%02X", c);
+      return fail(ErrorCode::bad_input,
+                  std::string(shown) +
+                      " is not an ISO 840 tape character (the control would raise a TH alarm)",
+                  where);
+    }
+  }
+  return {};
+}
+
 Expected<FanucProgram> FanucProgram::open(const std::filesystem::path& path) {
   FanucProgram program(path.string());
   program.in_.open(path, std::ios::binary);
@@ -40,17 +55,7 @@ Expected<bool> FanucProgram::next(FanucBlock& block) {
     if (raw.empty()) {
       continue;
     }
-    for (const char ch : raw) {
-      const auto c = static_cast<unsigned char>(ch);
-      if (!iso840_character(c)) {
-        char shown[24];
-        std::snprintf(shown, sizeof shown, std::isprint(c) != 0 ? "'%c'" : "byte 0x%02X", c);
-        return fail(ErrorCode::bad_input,
-                    std::string(shown) +
-                        " is not an ISO 840 tape character (the control would raise a TH alarm)",
-                    {name_, static_cast<int>(line_), {}});
-      }
-    }
+    SUBFEED_TRY(check_tape_block(raw, {name_, static_cast<int>(line_), {}}));
     block.line = line_;
     block.text = std::move(raw);
     return true;

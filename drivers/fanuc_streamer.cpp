@@ -20,7 +20,7 @@ constexpr auto finest_pacing = std::chrono::microseconds(500);
 
 class FanucStreamer {
 public:
-  FanucStreamer(Transport& link, FanucProgram& program, const FanucStreamOptions& options,
+  FanucStreamer(Transport& link, BlockSource& program, const FanucStreamOptions& options,
                 ControlInbox* inbox, StreamObserver& observer)
       : link_(link), program_(program), options_(options), inbox_(inbox), observer_(observer),
         eob_(options.eia_cr ? '\r' : '\n') {
@@ -243,7 +243,7 @@ private:
   }
 
   Transport& link_;
-  FanucProgram& program_;
+  BlockSource& program_;
   const FanucStreamOptions& options_;
   ControlInbox* inbox_;
   StreamObserver& observer_;
@@ -269,7 +269,7 @@ int bits_per_character(const SerialOptions& serial) {
   return 1 + serial.data_bits + (serial.parity == SerialParity::none ? 0 : 1) + serial.stop_bits;
 }
 
-Expected<StreamSummary> stream_fanuc(Transport& link, FanucProgram& program,
+Expected<StreamSummary> stream_fanuc(Transport& link, BlockSource& program,
                                      const FanucStreamOptions& options, ControlInbox* inbox,
                                      StreamObserver& observer) {
   FanucStreamer streamer(link, program, options, inbox, observer);

@@ -29,7 +29,7 @@ struct InFlight {
 
 class GrblStreamer {
 public:
-  GrblStreamer(Transport& link, GcodeSource& source, const GrblStreamOptions& options,
+  GrblStreamer(Transport& link, LineSource& source, const GrblStreamOptions& options,
                ControlInbox* inbox, StreamObserver& observer)
       : link_(link), source_(source), options_(options), inbox_(inbox), observer_(observer) {}
 
@@ -633,7 +633,7 @@ private:
   }
 
   Transport& link_;
-  GcodeSource& source_;
+  LineSource& source_;
   const GrblStreamOptions& options_;
   ControlInbox* inbox_;
   StreamObserver& observer_;
@@ -660,7 +660,7 @@ private:
 
 } // namespace
 
-Expected<StreamSummary> stream_grbl(Transport& link, GcodeSource& source,
+Expected<StreamSummary> stream_grbl(Transport& link, LineSource& source,
                                     const GrblStreamOptions& options, ControlInbox* inbox,
                                     StreamObserver& observer) {
   GrblStreamer streamer(link, source, options, inbox, observer);

@@ -2,6 +2,7 @@
 
 #include "base/decimal_text.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace subfeed::cl {
@@ -15,13 +16,14 @@ Expected<ClWriter> ClWriter::create(const std::filesystem::path& path, const ClH
   append_decimal(text, header.cutter.corner_radius, 6);
   text += header.multiaxis ? "\nMULTAX/ON\n" : "\n";
   writer.out_.write(text);
+  writer.line_ = header.multiaxis ? 4 : 3;
   return writer;
 }
 
 ClWriter::ClWriter(AtomicOutputFile out, bool multiaxis)
     : out_(std::move(out)), multiaxis_(multiaxis) {}
 
-void ClWriter::write(const ClPose& pose) {
+long ClWriter::write(const ClPose& pose) {
   buffer_.clear();
   if (pose.kind == MoveKind::rapid) {
     buffer_ += "RAPID\n";
@@ -51,6 +53,8 @@ void ClWriter::write(const ClPose& pose) {
   }
   buffer_.back() = '\n';
   out_.write(buffer_);
+  line_ += std::count(buffer_.begin(), buffer_.end(), '\n');
+  return line_;
 }
 
 Expected<void> ClWriter::finish() {

@@ -25,5 +25,6 @@ void add_post_command(CLI::App& app, Action& chosen);
 void add_check_command(CLI::App& app, Action& chosen);
 void add_plan_command(CLI::App& app, Action& chosen);
 void add_verify_command(CLI::App& app, Action& chosen);
+void add_run_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

@@ -4,9 +4,12 @@
 
 #include "command.hpp"
 #include "control_thread.hpp"
+#include "controller_link.hpp"
 #include "stream_reporter.hpp"
 
 #include "drivers/fanuc_streamer.hpp"
+#include "drivers/fanuc_program.hpp"
+#include "drivers/gcode_source.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/journal.hpp"
 #include "drivers/port_list.hpp"
@@ -48,33 +51,6 @@ struct SendOptions {
   std::string journal; // default: the program's path + ".journal"
 };
 
-struct Link {
-  std::unique_ptr<sim::GrblSim> simulator; // declared first: dies after the port
-  std::unique_ptr<sim::FanucSim> control;
-  std::unique_ptr<drivers::Transport> transport;
-  std::optional<int> baud; // for link use; none for TCP
-};
-
-drivers::SerialParity to_driver(post::Parity p) {
-  return p == post::Parity::even  ? drivers::SerialParity::even
-         : p == post::Parity::odd ? drivers::SerialParity::odd
-                                  : drivers::SerialParity::none;
-}
-
-drivers::SerialFlow to_driver(post::FlowControl f) {
-  switch (f) {
-  case post::FlowControl::xon_xoff:
-    return drivers::SerialFlow::xon_xoff;
-  case post::FlowControl::rts_cts:
-    return drivers::SerialFlow::rts_cts;
-  case post::FlowControl::both:
-    return drivers::SerialFlow::both;
-  case post::FlowControl::none:
-    break;
-  }
-  return drivers::SerialFlow::none;
-}
-
 void apply_framing_flags(const SendOptions& o, drivers::SerialOptions& serial) {
   if (o.baud > 0) {
     serial.baud = o.baud;
@@ -111,8 +87,7 @@ Expected<drivers::SerialOptions> apply_machine(SendOptions& o) {
     }
     o.protocol = protocol;
     o.dnc.program_number = config.controller.program_number;
-    const auto& s = config.controller.serial;
-    serial = {s.baud, s.data_bits, to_driver(s.parity), s.stop_bits, to_driver(s.flow_control)};
+    serial = serial_options_for(config);
     if (!o.stream.line_limit) {
       o.stream.line_limit = config.controller.line_length;
     }
@@ -140,63 +115,18 @@ Expected<drivers::SerialOptions> apply_machine(SendOptions& o) {
   return serial;
 }
 
-Expected<Link> open_link(const SendOptions& o, const drivers::SerialOptions& serial) {
-  Link link;
-  std::string port = o.port;
-  if (o.sim == "fanuc") {
-    SUBFEED_TRY_ASSIGN(auto pty, sim::Pty::open());
-    sim::FanucSimOptions control;
-    control.baud = o.sim_baud >= 0 ? o.sim_baud : serial.baud;
-    control.data_bits = serial.data_bits;
-    control.parity = serial.parity == drivers::SerialParity::none
-                         ? 'N'
-                         : (serial.parity == drivers::SerialParity::odd ? 'O' : 'E');
-    control.stop_bits = serial.stop_bits;
-    control.request_tape = o.dnc.wait_for_request;
-    control.eia_cr = o.dnc.eia_cr;
-    control.motion.speed = o.sim_speed;
-    link.control =
-        std::make_unique<sim::FanucSim>(std::make_unique<sim::Pty>(std::move(pty)), control);
-    link.control->start();
-    port = link.control->address();
-    link.baud = control.baud > 0 ? std::optional<int>(control.baud) : std::nullopt;
-  } else if (!o.sim.empty()) {
-    SUBFEED_TRY_ASSIGN(auto pty, sim::Pty::open());
-    sim::GrblSimOptions sim_options;
-    sim_options.grblhal = o.sim == "grblhal";
-    sim_options.axes = sim_options.grblhal ? 6 : 3; // grblHAL: X Y Z A B C, any 5-axis type
-    sim_options.rx_buffer = sim_options.grblhal ? 1024 : 128;
-    sim_options.planner_blocks = sim_options.grblhal ? 100 : 16;
-    sim_options.line_limit = sim_options.grblhal ? 256 : 79;
-    sim_options.baud = o.sim_baud >= 0 ? o.sim_baud : serial.baud;
-    sim_options.motion.speed = o.sim_speed;
-    link.simulator =
-        std::make_unique<sim::GrblSim>(std::make_unique<sim::Pty>(std::move(pty)), sim_options);
-    link.simulator->start();
-    port = link.simulator->address();
-    link.baud = sim_options.baud > 0 ? std::optional<int>(sim_options.baud) : std::nullopt;
-  }
-  if (!o.tcp.empty()) {
-    SUBFEED_TRY_ASSIGN(
-        auto tcp, drivers::TcpTransport::connect(o.tcp, std::chrono::milliseconds(static_cast<long>(
-                                                            o.connect_timeout_s * 1000))));
-    link.transport = std::make_unique<drivers::TcpTransport>(std::move(tcp));
-    return link;
-  }
-  const auto port_options = o.protocol == "fanuc" ? drivers::dnc_port_options(serial) : serial;
-  auto serial_port = drivers::SerialPort::open(port, port_options);
-  if (!serial_port) {
-    Error error = serial_port.error();
-    if (const auto ports = drivers::list_serial_ports(); ports && o.sim.empty()) {
-      error.message += "; serial ports here: " + drivers::describe_ports(*ports);
-    }
-    return std::unexpected(error);
-  }
-  link.transport = std::make_unique<drivers::SerialPort>(std::move(*serial_port));
-  if (o.sim.empty()) {
-    link.baud = serial.baud;
-  }
-  return link;
+LinkRequest link_request(const SendOptions& o) {
+  LinkRequest r;
+  r.port = o.port;
+  r.tcp = o.tcp;
+  r.sim = o.sim;
+  r.protocol = o.protocol;
+  r.connect_timeout_s = o.connect_timeout_s;
+  r.sim_speed = o.sim_speed;
+  r.sim_baud = o.sim_baud;
+  r.sim_requests_tape = o.dnc.wait_for_request;
+  r.eia_cr = o.dnc.eia_cr;
+  return r;
 }
 
 Expected<drivers::StreamSummary> send_dnc(SendOptions& o, const drivers::SerialOptions& serial,
@@ -231,7 +161,7 @@ Expected<void> send(SendOptions o, Logger& log) {
   SUBFEED_TRY_ASSIGN(auto source, drivers::GcodeSource::open(o.file, {}));
   SUBFEED_TRY_ASSIGN(auto journal,
                      drivers::Journal::open(o.journal.empty() ? o.file + ".journal" : o.journal));
-  SUBFEED_TRY_ASSIGN(auto link, open_link(o, serial));
+  SUBFEED_TRY_ASSIGN(auto link, open_link(link_request(o), serial));
   SUBFEED_TRY_ASSIGN(auto inbox, drivers::ControlInbox::create());
   StreamReporter reporter(log, o.json);
   drivers::JournaledObserver observer(reporter, journal);

@@ -6,8 +6,6 @@
 
 namespace subfeed::cli {
 
-namespace {
-
 std::string clock_text(double seconds) {
   const auto s = static_cast<long>(seconds + 0.5);
   return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
@@ -39,7 +37,6 @@ std::string state_text(const drivers::StreamProgress& p) {
                                  : p.status->state;
 }
 
-} // namespace
 
 StreamReporter::StreamReporter(Logger& log, bool json)
     : log_(log), json_(json),

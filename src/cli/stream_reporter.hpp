@@ -10,6 +10,13 @@
 
 namespace subfeed::cli {
 
+// "mm:ss", or "h:mm:ss" from an hour on.
+[[nodiscard]] std::string clock_text(double seconds);
+// JSON string contents: controller messages may carry quotes, backslashes or noise bytes.
+[[nodiscard]] std::string json_escape(std::string_view text);
+// The controller's state for a display: "Run", "Hold:0", or the link's state for DNC.
+[[nodiscard]] std::string state_text(const drivers::StreamProgress& p);
+
 class StreamReporter final : public drivers::StreamObserver {
 public:
   StreamReporter(Logger& log, bool json);
@@ -26,9 +33,9 @@ public:
   void finished(const drivers::StreamSummary& summary, std::optional<int> baud,
                 int bits_per_character);
   void failed(const Error& error);
+  void end_progress_line();
 
 private:
-  void end_progress_line();
 
   Logger& log_;
   bool json_;

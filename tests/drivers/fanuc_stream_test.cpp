@@ -1,6 +1,7 @@
 // The real DNC sender over a real pty against the simulated Fanuc-style control.
 
 #include "drivers/fanuc_modal_state.hpp"
+#include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
 #include "sim/fanuc_sim.hpp"
 #include "sim/pty.hpp"

@@ -1,5 +1,6 @@
 // The real sender over a real pty against the simulated GRBL: every behaviour and fault.
 
+#include "drivers/gcode_source.hpp"
 #include "drivers/tcp_transport.hpp"
 #include "sim/pty.hpp"
 #include "sim/tcp_listener.hpp"

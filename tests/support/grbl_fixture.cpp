@@ -1,5 +1,6 @@
 #include "support/grbl_fixture.hpp"
 
+#include "drivers/gcode_source.hpp"
 #include "sim/pty.hpp"
 
 #include <cstring>

@@ -7,6 +7,7 @@
 // added by the sender.
 
 #include "base/error.hpp"
+#include "drivers/block_source.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -14,26 +15,15 @@
 
 namespace subfeed::drivers {
 
-struct FanucBlock {
-  long line = 0; // 1-based line in the file
-  std::string text;
-};
-
-struct FanucScan {
-  long blocks = 0; // non-blank lines, '%' lines included
-  long bytes = 0;
-  bool framed = false; // the first block is '%'
-};
-
-class FanucProgram {
+class FanucProgram final : public BlockSource {
 public:
   [[nodiscard]] static Expected<FanucProgram> open(const std::filesystem::path& path);
 
-  [[nodiscard]] Expected<FanucScan> scan();
-  [[nodiscard]] Expected<void> rewind();
+  [[nodiscard]] Expected<FanucScan> scan() override;
+  [[nodiscard]] Expected<void> rewind() override;
   // Fills `block` with the next non-blank line; false at the end of the file.
-  [[nodiscard]] Expected<bool> next(FanucBlock& block);
-  [[nodiscard]] const std::string& name() const { return name_; }
+  [[nodiscard]] Expected<bool> next(FanucBlock& block) override;
+  [[nodiscard]] const std::string& name() const override { return name_; }
 
 private:
   explicit FanucProgram(std::string name) : name_(std::move(name)) {}
@@ -42,8 +32,5 @@ private:
   std::ifstream in_;
   long line_ = 0;
 };
-
-// ISO 840 tape characters: capitals, digits, space and + - . / ( ) # * ; = % :
-[[nodiscard]] bool iso840_character(unsigned char c);
 
 } // namespace subfeed::drivers

@@ -9,7 +9,7 @@
 
 #include "base/error.hpp"
 #include "drivers/control_inbox.hpp"
-#include "drivers/fanuc_program.hpp"
+#include "drivers/block_source.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/transport.hpp"
@@ -34,7 +34,7 @@ struct FanucStreamOptions {
 
 // Progress is reported through StreamObserver: lines_sent counts blocks sent (the control
 // does not acknowledge blocks), link_state is "XOFF" while the control holds the tape.
-[[nodiscard]] Expected<StreamSummary> stream_fanuc(Transport& link, FanucProgram& program,
+[[nodiscard]] Expected<StreamSummary> stream_fanuc(Transport& link, BlockSource& program,
                                                    const FanucStreamOptions& options,
                                                    ControlInbox* inbox, StreamObserver& observer);
 

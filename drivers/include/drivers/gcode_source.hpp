@@ -5,6 +5,7 @@
 
 #include "base/error.hpp"
 #include "drivers/gcode_line.hpp"
+#include "drivers/line_source.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -12,31 +13,21 @@
 
 namespace subfeed::drivers {
 
-struct SourceLine {
-  long number = 0; // 1-based line in the file
-  PreparedLine line;
-};
-
-struct ScanSummary {
-  long lines_to_send = 0; // non-blank lines
-  long bytes_to_send = 0; // including one '\n' per line
-};
-
-class GcodeSource {
+class GcodeSource final : public LineSource {
 public:
   [[nodiscard]] static Expected<GcodeSource> open(const std::filesystem::path& path,
                                                   LineRules rules);
 
   // Reads the whole file once, checking every line.
-  [[nodiscard]] Expected<ScanSummary> scan();
+  [[nodiscard]] Expected<ScanSummary> scan() override;
   // Back to the first line.
-  [[nodiscard]] Expected<void> rewind();
+  [[nodiscard]] Expected<void> rewind() override;
   // The next line that has something to send; nullopt at the end of the file.
-  [[nodiscard]] Expected<std::optional<SourceLine>> next();
+  [[nodiscard]] Expected<std::optional<SourceLine>> next() override;
 
-  [[nodiscard]] const std::string& name() const { return name_; }
+  [[nodiscard]] const std::string& name() const override { return name_; }
   [[nodiscard]] const LineRules& rules() const { return rules_; }
-  void set_rules(const LineRules& rules) { rules_ = rules; }
+  void set_rules(const LineRules& rules) override { rules_ = rules; }
 
 private:
   GcodeSource(std::string name, LineRules rules) : name_(std::move(name)), rules_(rules) {}

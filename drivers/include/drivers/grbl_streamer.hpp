@@ -14,7 +14,7 @@
 
 #include "base/error.hpp"
 #include "drivers/control_inbox.hpp"
-#include "drivers/gcode_source.hpp"
+#include "drivers/line_source.hpp"
 #include "drivers/grbl_reply.hpp"
 #include "drivers/transport.hpp"
 
@@ -92,7 +92,7 @@ struct StreamSummary {
 };
 
 // `inbox` may be null. The link stays open; the caller owns it.
-[[nodiscard]] Expected<StreamSummary> stream_grbl(Transport& link, GcodeSource& source,
+[[nodiscard]] Expected<StreamSummary> stream_grbl(Transport& link, LineSource& source,
                                                   const GrblStreamOptions& options,
                                                   ControlInbox* inbox, StreamObserver& observer);
 

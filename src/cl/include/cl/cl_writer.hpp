@@ -15,7 +15,8 @@ class ClWriter {
 public:
   [[nodiscard]] static Expected<ClWriter> create(const std::filesystem::path& path,
                                                  const ClHeader& header);
-  void write(const ClPose& pose);
+  // Returns the line of the file the pose's GOTO is on (for trace maps).
+  long write(const ClPose& pose);
   // Writes FINI and moves the file into place.
   [[nodiscard]] Expected<void> finish();
 
@@ -25,6 +26,7 @@ private:
   AtomicOutputFile out_;
   bool multiaxis_;
   double feed_ = -1.0;
+  long line_ = 0; // lines written so far
   std::string buffer_;
 };
 

@@ -1,0 +1,225 @@
+#include "job_pipeline.hpp"
+
+#include "base/atomic_output_file.hpp"
+#include "cl/cl_writer.hpp"
+#include "motion_time.hpp"
+#include "post/post_processor.hpp"
+#include "post/program_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace subfeed::cli {
+
+namespace {
+
+Error stopped_reading() {
+  return Error{ErrorCode::stopped, "the post stopped reading", {}};
+}
+
+// The post's errors know the CL line; the file is the job's .cl.
+Error in_file(Error error, const std::filesystem::path& file) {
+  if (error.where.file.empty() && error.where.line > 0) {
+    error.where.file = file.string();
+  }
+  return error;
+}
+
+double distance(const cl::ClPose& a, const cl::ClPose& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    sum += (b.tip[i] - a.tip[i]) * (b.tip[i] - a.tip[i]);
+  }
+  return std::sqrt(sum);
+}
+
+} // namespace
+
+JobPipeline::JobPipeline(JobSpec spec) : spec_(std::move(spec)), lines_(spec_.queue_lines) {}
+
+JobPipeline::~JobPipeline() {
+  detach();
+  poses_.close();
+  if (planner_.joinable()) {
+    planner_.join();
+  }
+  if (poster_.joinable()) {
+    poster_.join();
+  }
+}
+
+void JobPipeline::start() {
+  planner_ = std::thread([this] {
+    if (auto done = plan_all(); !done) {
+      plan_error_ = done.error();
+      poses_.push(std::unexpected(done.error()));
+    }
+    planned_ = true;
+    poses_.close();
+  });
+  poster_ = std::thread([this] {
+    if (auto done = post_all(); !done) {
+      post_error_ = done.error();
+      if (!detached_) {
+        lines_.push(std::unexpected(done.error()));
+      }
+      poses_.close(); // a planner waiting to hand over a pose stops
+    }
+    lines_.close();
+  });
+}
+
+void JobPipeline::detach() {
+  detached_ = true;
+  lines_.close();
+}
+
+Expected<void> JobPipeline::plan_all() {
+  SUBFEED_TRY_ASSIGN(auto planner,
+                     geometry::ToolpathPlanner::prepare(spec_.cage, spec_.surface, spec_.plan));
+  SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, spec_.header));
+  std::optional<cl::ClPose> last;
+  double cut_mm = 0.0;
+  const auto on_plane = [this](long plane, long planes) {
+    plane_ = plane;
+    planes_ = planes;
+  };
+  SUBFEED_TRY(planner.run([&](const cl::ClPose& pose) -> Expected<void> {
+    cl::ClPose numbered = pose;
+    numbered.line = writer.write(pose);
+    if (pose.kind == cl::MoveKind::feed && last) {
+      cut_mm += distance(*last, pose);
+      cut_planned_ = cut_mm;
+    }
+    last = pose;
+    if (pose.kind == cl::MoveKind::plunge) {
+      ++passes_;
+    }
+    if (!poses_.push(numbered)) {
+      return std::unexpected(stopped_reading());
+    }
+    return {};
+  }, on_plane));
+  SUBFEED_TRY(writer.finish());
+  totals_.plan = planner.summary();
+  return {};
+}
+
+void JobPipeline::put_line(std::string_view text, double cut_mm, double minutes) {
+  const long line = ++lines_posted_;
+  if (detached_) {
+    return;
+  }
+  {
+    const std::lock_guard lock(ledger_mutex_);
+    ledger_.push_back({line, cut_mm, minutes});
+    posted_ = ledger_.back();
+  }
+  if (!lines_.push(std::string(text))) {
+    detached_ = true;
+  }
+}
+
+Expected<void> JobPipeline::post_all() {
+  const auto& machine = spec_.machine;
+  const auto& nc = spec_.files.nc;
+  SUBFEED_TRY_ASSIGN(auto program, AtomicOutputFile::create(nc));
+  SUBFEED_TRY_ASSIGN(auto map, AtomicOutputFile::create(post::map_path_for(nc)));
+  map.write("# subfeed map: nc_line cl_line cut|link\n");
+  const auto kinematics = post::make_kinematics(machine);
+  post::PostOptions post_options = spec_.post.post;
+  post_options.decimals = spec_.post.program.decimals;
+  MotionTimeModel model(machine);
+  double cut_mm = 0.0, minutes = 0.0;
+  std::string text;
+  long nc_line = 0;
+  post::ProgramWriter writer(spec_.post.program, machine.axes,
+                             [&](std::string_view line, long cl_line, bool link) {
+                               ++nc_line;
+                               text.assign(line);
+                               text += '\n';
+                               program.write(text);
+                               map.write(std::to_string(nc_line) + ' ' + std::to_string(cl_line) +
+                                         (link ? " link\n" : " cut\n"));
+                               put_line(line, cut_mm, minutes);
+                             });
+  post::PostProcessor post(machine, *kinematics, post_options,
+                           [&](const post::MotionBlock& block) {
+                             minutes += model.add(block);
+                             return writer.write(block);
+                           });
+  const auto run = [&]() -> Expected<void> {
+    SUBFEED_TRY(writer.begin());
+    std::optional<cl::ClPose> last;
+    while (auto item = poses_.pop()) {
+      if (!*item) {
+        return std::unexpected(item->error());
+      }
+      const cl::ClPose& pose = **item;
+      if (pose.kind == cl::MoveKind::feed && last) {
+        cut_mm += distance(*last, pose);
+      }
+      last = pose;
+      SUBFEED_TRY(post.add(pose));
+    }
+    if (!planned_) {
+      return std::unexpected(stopped_reading());
+    }
+    SUBFEED_TRY(post.finish());
+    return writer.end();
+  };
+  if (auto done = run(); !done) {
+    return std::unexpected(in_file(std::move(done).error(), spec_.files.cl));
+  }
+  if (plan_error_) {
+    return std::unexpected(*plan_error_);
+  }
+  SUBFEED_TRY(program.commit());
+  SUBFEED_TRY(map.commit());
+  totals_.post = post.stats();
+  totals_.lines = nc_line;
+  totals_.cut_mm = cut_mm;
+  totals_.machine_min = minutes;
+  return {};
+}
+
+Expected<JobTotals> JobPipeline::finish() {
+  if (planner_.joinable()) {
+    planner_.join();
+  }
+  if (poster_.joinable()) {
+    poster_.join();
+  }
+  if (plan_error_) {
+    return std::unexpected(*plan_error_);
+  }
+  if (post_error_) {
+    return std::unexpected(*post_error_);
+  }
+  return totals_;
+}
+
+JobProgress JobPipeline::progress(long acked_line) {
+  JobProgress p;
+  p.planned = planned_;
+  p.passes = passes_;
+  p.lines_posted = lines_posted_;
+  const std::lock_guard lock(ledger_mutex_);
+  while (!ledger_.empty() && ledger_.front().line <= acked_line) {
+    acked_ = ledger_.front();
+    ledger_.pop_front();
+  }
+  p.cut_done_mm = acked_.cut_mm;
+  p.minutes_done = acked_.minutes;
+  const double planned_mm = cut_planned_;
+  const long plane = plane_, planes = planes_;
+  p.cut_total_mm = p.planned || plane <= 0 ? planned_mm
+                                           : planned_mm * static_cast<double>(planes) /
+                                                 static_cast<double>(plane);
+  const double rate = posted_.cut_mm > 0.0 ? posted_.minutes / posted_.cut_mm : 0.0;
+  p.minutes_total =
+      posted_.minutes + std::max(0.0, p.cut_total_mm - posted_.cut_mm) * rate;
+  return p;
+}
+
+} // namespace subfeed::cli

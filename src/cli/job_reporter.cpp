@@ -1,0 +1,72 @@
+#include "job_reporter.hpp"
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <unistd.h>
+
+namespace subfeed::cli {
+
+JobReporter::JobReporter(Logger& log, bool json, JobPipeline& job, bool acks, double speed)
+    : inner_(log, json), job_(job), json_(json),
+      terminal_(!json && log.verbosity() != Verbosity::quiet && ::isatty(STDERR_FILENO) != 0),
+      acks_(acks), speed_(speed), start_(std::chrono::steady_clock::now()) {}
+
+void JobReporter::line_sent(long line, long /*bytes*/) {
+  ++sent_;
+  if (!first_block_s_) {
+    first_block_s_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  if (!acks_ && line > 0) {
+    done_line_ = line;
+    ++done_;
+  }
+}
+
+void JobReporter::line_answered(long line, int /*error_code*/) {
+  if (line > 0) {
+    done_line_ = line;
+    ++done_;
+  }
+}
+
+void JobReporter::message(std::string_view line) {
+  inner_.end_progress_line();
+  inner_.message(line);
+}
+
+void JobReporter::line_error(const drivers::LineError& error) {
+  inner_.end_progress_line();
+  inner_.line_error(error);
+}
+
+void JobReporter::progress(const drivers::StreamProgress& p) {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_update_ < std::chrono::milliseconds(json_ ? 500 : 200)) {
+    return;
+  }
+  last_update_ = now;
+  const JobProgress j = job_.progress(done_line_);
+  const double percent = j.cut_total_mm > 0.0 ? 100.0 * j.cut_done_mm / j.cut_total_mm : 0.0;
+  const double eta_s = (j.minutes_total - j.minutes_done) * 60.0 / speed_;
+  const std::string state = state_text(p);
+  if (json_) {
+    std::printf("{\"event\":\"progress\",\"passes\":%ld,\"planned\":%s,\"posted\":%ld,"
+                "\"sent\":%ld,\"done\":%ld,\"cut_percent\":%.2f,\"eta_s\":%.1f,"
+                "\"elapsed_s\":%.2f,\"state\":\"%s\"}\n",
+                j.passes, j.planned ? "true" : "false", j.lines_posted, sent_, done_, percent,
+                eta_s, p.elapsed_s, json_escape(state).c_str());
+    std::fflush(stdout);
+  } else if (terminal_) {
+    constexpr int width = 20;
+    const int filled = std::clamp(static_cast<int>(percent / 100.0 * width + 0.5), 0, width);
+    std::fprintf(stderr,
+                 "\r[%s%s] %5.1f%% cut  passes %ld%s  posted %ld  %s %ld  ETA %s%s  %-8s\x1b[K",
+                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(width - filled), '.').c_str(), percent,
+                 j.passes, j.planned ? "" : "+", j.lines_posted, acks_ ? "acked" : "sent", done_,
+                 clock_text(eta_s).c_str(), j.planned ? "" : "~", state.c_str());
+  }
+}
+
+} // namespace subfeed::cli

@@ -1,0 +1,47 @@
+#pragma once
+// How `run` shows a job: one progress line on a terminal with every stage in it (passes
+// planned, blocks posted, lines acknowledged, % of the cutting length done, ETA from the
+// motion-time model, controller state), JSON events with the same fields (--json), or
+// nothing (--quiet). Controller messages, errors and the final summary go through the
+// StreamReporter that `send` uses. Also notes when the first block left and when the first
+// cutting block left, for the time-to-first-block figure.
+
+#include "job_pipeline.hpp"
+#include "stream_reporter.hpp"
+
+#include <chrono>
+#include <optional>
+
+namespace subfeed::cli {
+
+class JobReporter final : public drivers::StreamObserver {
+public:
+  // `acks`: the controller acknowledges lines (GRBL); without, a block counts once sent.
+  // `speed`: the simulated machine runs this many times faster than real time.
+  JobReporter(Logger& log, bool json, JobPipeline& job, bool acks, double speed);
+
+  void connected(const drivers::ControllerInfo& info) override { inner_.connected(info); }
+  void progress(const drivers::StreamProgress& progress) override;
+  void message(std::string_view line) override;
+  void line_error(const drivers::LineError& error) override;
+  void phase(std::string_view name) override { inner_.phase(name); }
+  void line_sent(long line, long bytes) override;
+  void line_answered(long line, int error_code) override;
+
+  [[nodiscard]] StreamReporter& stream() { return inner_; }
+  [[nodiscard]] std::optional<double> first_block_s() const { return first_block_s_; }
+  [[nodiscard]] long last_done_line() const { return done_line_; }
+
+private:
+  StreamReporter inner_;
+  JobPipeline& job_;
+  bool json_, terminal_, acks_;
+  double speed_;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_update_{};
+  std::optional<double> first_block_s_;
+  long done_line_ = 0;
+  long sent_ = 0, done_ = 0;
+};
+
+} // namespace subfeed::cli

@@ -1,0 +1,84 @@
+#include "plan_flags.hpp"
+
+#include "tool_spec.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace subfeed::cli {
+
+namespace {
+
+Expected<double> direction_deg(const std::string& text) {
+  if (text == "x") {
+    return 0.0;
+  }
+  if (text == "y") {
+    return 90.0;
+  }
+  try {
+    std::size_t used = 0;
+    const double a = std::stod(text, &used);
+    if (used == text.size()) {
+      return a;
+    }
+  } catch (const std::exception&) {
+  }
+  return fail(ErrorCode::usage, "'" + text + "': expected x, y or an angle in degrees",
+              {{}, 0, "--direction"});
+}
+
+} // namespace
+
+Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
+  SUBFEED_TRY_ASSIGN(const double radius, parse_ball_tool(o.tool));
+  if (o.scallop <= 0.0 || o.scallop >= radius) {
+    return fail(ErrorCode::usage, "must be more than 0 and less than the ball radius",
+                {{}, 0, "--scallop"});
+  }
+  geometry::PlanOptions options;
+  options.ball_radius = radius;
+  options.scallop = o.scallop;
+  SUBFEED_TRY_ASSIGN(options.direction_deg, direction_deg(o.direction));
+  options.baseline = o.baseline;
+  if (o.axis_radius > 0.0) {
+    options.axis_radius = o.axis_radius;
+  }
+  options.fixed_axis = o.axis == "fixed";
+  options.zigzag = !o.one_way;
+  options.feed = o.feed;
+  options.plunge_feed = o.plunge_feed;
+  options.clearance = o.clearance;
+  options.refine_iterations = o.refine;
+  if (o.tolerance > 0.0) {
+    options.tolerance = o.tolerance;
+  }
+  return options;
+}
+
+void add_plan_flags(CLI::App& cmd, PlanFlags& o) {
+  cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required();
+  cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required();
+  cmd.add_option("--direction", o.direction, "Feed direction: x, y or degrees from X");
+  cmd.add_flag("--baseline", o.baseline, "Constant-interval iso-planar passes for comparison");
+  cmd.add_option("--axis-radius", o.axis_radius,
+                 "Tool axis averaging radius zeta, mm (default: ball radius)")
+      ->check(CLI::Range(1e-3, 1000.0));
+  cmd.add_option("--axis", o.axis, "Tool axis: normal (five axes) or fixed (vertical, three axes)")
+      ->check(CLI::IsMember({"normal", "fixed"}));
+  cmd.add_flag("--one-way", o.one_way, "Cut every pass in the same direction (default zig-zag)");
+  cmd.add_option("--feed", o.feed, "Cutting feed, mm/min")->check(CLI::Range(1.0, 100000.0));
+  cmd.add_option("--plunge-feed", o.plunge_feed, "Plunge feed, mm/min")
+      ->check(CLI::Range(1.0, 100000.0));
+  cmd.add_option("--clearance", o.clearance, "Retract along the tool axis between passes, mm")
+      ->check(CLI::Range(0.01, 1000.0));
+  cmd.add_option("--tolerance", o.tolerance,
+                 "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
+      ->check(CLI::Range(1e-6, 1.0));
+  cmd.add_option("--level", o.level, "Bfr approximation level near irregular features")
+      ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
+  cmd.add_option("--refine", o.refine,
+                 "Most deformation solves while measured spacing exceeds the need")
+      ->check(CLI::Range(1, 100));
+}
+
+} // namespace subfeed::cli

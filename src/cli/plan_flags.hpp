@@ -1,0 +1,36 @@
+#pragma once
+// The planning flags `plan` and `run` share (tool, scallop, direction, axis, feeds, ...),
+// registered on a subcommand and turned into geometry::PlanOptions.
+
+#include "base/error.hpp"
+#include "geometry/toolpath_planner.hpp"
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace subfeed::cli {
+
+struct PlanFlags {
+  std::string tool;
+  double scallop = 0.0;
+  std::string direction = "x";
+  bool baseline = false;
+  double axis_radius = 0.0;
+  std::string axis = "normal";
+  bool one_way = false;
+  double feed = 1000.0;
+  double plunge_feed = 300.0;
+  double clearance = 2.0;
+  double tolerance = 0.0;
+  int level = geometry::min_approx_level;
+  int refine = 60;
+};
+
+void add_plan_flags(CLI::App& cmd, PlanFlags& flags);
+// Checks what CLI11 cannot (the scallop against the tool) and fills the planner's options.
+[[nodiscard]] Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& flags);
+
+} // namespace subfeed::cli

@@ -1,0 +1,143 @@
+// `subfeed run CAGE.obj --machine M.toml --tool ball:D --scallop H (--port | --tcp | --sim)`:
+// the whole job, lazily chained (job_pipeline.hpp): the controller receives the program's
+// first blocks while the planner is still solving, and memory stays bounded. The .cl, .nc
+// and .nc.map appear beside the cage (or -o BASE) once complete; the journal records every
+// block sent and answered, and the job's own arguments so that `resume` can rebuild it.
+
+#include "command.hpp"
+#include "control_thread.hpp"
+#include "controller_link.hpp"
+#include "dry_run.hpp"
+#include "job_pipeline.hpp"
+#include "job_reporter.hpp"
+#include "plan_flags.hpp"
+#include "run_job.hpp"
+
+#include "drivers/fanuc_streamer.hpp"
+#include "drivers/grbl_streamer.hpp"
+#include "drivers/journal.hpp"
+#include "geometry/obj_reader.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+namespace subfeed::cli {
+
+namespace {
+
+Expected<drivers::StreamSummary> stream(const RunOptions& o, const post::MachineConfig& machine,
+                                        Link& link, JobPipeline& job, drivers::ControlInbox& inbox,
+                                        drivers::StreamObserver& observer) {
+  const std::string name = job_files(o).nc.string();
+  if (machine.controller.protocol == post::Protocol::fanuc) {
+    if (!o.tcp.empty()) {
+      return fail(ErrorCode::usage, "fanuc drip feed runs over a serial port, not --tcp",
+                  {{}, 0, "--tcp"});
+    }
+    drivers::LiveBlocks program(name, job.program());
+    drivers::FanucStreamOptions dnc;
+    dnc.serial = serial_options_for(machine);
+    if (o.sim && o.sim_baud > 0) {
+      dnc.serial.baud = o.sim_baud; // the sender paces itself at the simulated wire's speed
+    }
+    dnc.program_number = machine.controller.program_number;
+    return drivers::stream_fanuc(*link.transport, program, dnc, &inbox, observer);
+  }
+  drivers::LiveGcode program(name, job.program());
+  drivers::GrblStreamOptions grbl;
+  grbl.line_limit = machine.controller.line_length;
+  grbl.rx_buffer = machine.controller.rx_buffer;
+  return drivers::stream_grbl(*link.transport, program, grbl, &inbox, observer);
+}
+
+void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter& reporter,
+                   Logger& log) {
+  log.info(fmt::format("{}: {} passes, cutting {:.1f} mm; {}: {} lines, modelled machine time "
+                       "{:.1f} min",
+                       files.cl.string(), t.plan.passes, t.cut_mm, files.nc.string(), t.lines,
+                       t.machine_min));
+  if (reporter.first_block_s()) {
+    log.info(fmt::format("  first block reached the controller {:.3f} s after start",
+                         *reporter.first_block_s()));
+  }
+}
+
+Expected<void> run_job(const RunOptions& o, Logger& log) {
+  block_stop_signals(); // before any thread starts
+  SUBFEED_TRY_ASSIGN(auto spec, job_spec(o, log));
+  const auto machine = spec.machine;
+  const JobFiles files = spec.files;
+  const double tolerance = spec.post.post.tolerance;
+  const bool fanuc = machine.controller.protocol == post::Protocol::fanuc;
+  SUBFEED_TRY_ASSIGN(auto journal, drivers::Journal::open(journal_path(o)));
+  LinkRequest request;
+  request.port = o.port;
+  request.tcp = o.tcp;
+  request.sim = o.sim ? simulator_for(machine) : std::string();
+  request.protocol = std::string(post::to_string(machine.controller.protocol));
+  request.sim_speed = o.sim_speed;
+  request.sim_baud = o.sim_baud;
+  if (fanuc && o.sim_baud == 0) {
+    request.sim_baud = 115200; // drip feed paces itself by the wire: it needs a speed
+  }
+  const auto serial = serial_options_for(machine);
+  SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial));
+  SUBFEED_TRY_ASSIGN(auto inbox, drivers::ControlInbox::create());
+  JobPipeline job(std::move(spec));
+  JobReporter reporter(log, o.json, job, !fanuc, o.sim ? o.sim_speed : 1.0);
+  drivers::JournaledObserver observer(reporter, journal);
+  journal.start(request.protocol, files.nc.string(), link.transport->name());
+  journal.event("job", encode_job(o));
+  const ControlThread control(*inbox, !o.json);
+  job.start();
+  RunOptions streamed = o;
+  streamed.sim_baud = request.sim_baud;
+  const auto summary = stream(streamed, machine, link, job, *inbox, observer);
+  journal.end(summary);
+  if (!summary) {
+    reporter.stream().failed(summary.error());
+    job.detach();
+    if (const auto done = job.finish(); done) {
+      log.warning(fmt::format("the program is complete in {}: `subfeed resume {}` continues "
+                              "the job",
+                              files.nc.string(), journal_path(o).string()));
+    }
+    return std::unexpected(summary.error());
+  }
+  SUBFEED_TRY_ASSIGN(const auto totals, job.finish());
+  reporter.stream().finished(*summary, link.baud, drivers::bits_per_character(serial));
+  report_totals(totals, files, reporter, log);
+  if (o.sim) {
+    SUBFEED_TRY(verify_dry_run(link, {files.cl, files.nc}, machine, tolerance, log));
+  }
+  return {};
+}
+
+} // namespace
+
+void add_run_command(CLI::App& app, Action& chosen) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Plan, post and drip-feed one job, lazily: cutting starts while planning goes on");
+  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+      ->required()
+      ->type_name("CAGE.obj");
+  add_run_flags(*cmd, *o);
+  auto* link = cmd->add_option_group("link", "Where the controller is (exactly one)");
+  link->add_option("--port", o->port, "Serial port (any tty path, ptys included)")
+      ->type_name("DEV");
+  link->add_option("--tcp", o->tcp, "TCP stream (grblHAL Ethernet, serial-to-TCP server)")
+      ->type_name("HOST:PORT");
+  link->add_flag("--sim", o->sim,
+                 "Dry run: the simulated controller that matches the machine, on a pty");
+  link->require_option(1);
+  cmd->add_option("--sim-speed", o->sim_speed,
+                  "With --sim: run the machine N times faster than real time")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited; DNC: 115200)")
+      ->check(CLI::Range(0, 4000000));
+  cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
+  cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_job(*o, log); }; });
+}
+
+} // namespace subfeed::cli

@@ -1,0 +1,159 @@
+#include "run_job.hpp"
+
+#include "geometry/limit_surface.hpp"
+#include "geometry/obj_reader.hpp"
+#include "post/post_file.hpp"
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <fmt/format.h>
+#include <map>
+
+namespace subfeed::cli {
+
+namespace {
+
+std::string escape(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '%' || c == ' ' || c == '=' || static_cast<unsigned char>(c) < 0x21) {
+      out += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string unescape(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '%' && i + 2 < text.size()) {
+      int value = 0;
+      std::from_chars(text.data() + i + 1, text.data() + i + 3, value, 16);
+      out += static_cast<char>(value);
+      i += 2;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+std::string number(double v) {
+  return fmt::format("{}", v);
+}
+
+} // namespace
+
+void add_run_flags(CLI::App& cmd, RunOptions& o) {
+  add_plan_flags(cmd, o.plan);
+  cmd.add_option("--machine", o.machine, "Machine config: kinematics, limits, controller")
+      ->required()
+      ->type_name("M.toml");
+  cmd.add_option("-o,--output", o.output,
+                 "BASE of the files written: BASE.cl, BASE.nc, BASE.nc.map, BASE.journal "
+                 "(default: the cage's path without .obj)");
+  cmd.add_option("--journal", o.journal, "Append the job's journal to FILE (default BASE.journal)")
+      ->type_name("FILE");
+  cmd.add_option("--spindle", o.spindle_rpm, "Spindle speed, rpm (S and M3 at the start)")
+      ->check(CLI::Range(0.0, 200000.0));
+}
+
+JobFiles job_files(const RunOptions& o) {
+  const std::filesystem::path base =
+      o.output.empty() ? std::filesystem::path(o.cage).replace_extension()
+                       : std::filesystem::path(o.output);
+  auto cl = base, nc = base;
+  cl += ".cl";
+  nc += ".nc";
+  return {cl, nc};
+}
+
+std::filesystem::path journal_path(const RunOptions& o) {
+  if (!o.journal.empty()) {
+    return o.journal;
+  }
+  auto path = job_files(o).nc;
+  return path.replace_extension(".journal");
+}
+
+Expected<JobSpec> job_spec(const RunOptions& o, Logger& log) {
+  SUBFEED_TRY_ASSIGN(auto machine, post::load_machine_config(o.machine));
+  SUBFEED_TRY_ASSIGN(auto plan, plan_options_from(o.plan));
+  if (machine.kinematics == post::KinematicsType::xyz && !plan.fixed_axis) {
+    plan.fixed_axis = true; // a three-axis machine holds the tool vertical
+    log.detail("three-axis machine: the tool axis stays vertical");
+  }
+  SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(o.cage));
+  SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, o.plan.level));
+  post::PostFileOptions post;
+  post.program = post::program_options_for(machine);
+  post.look_ahead = false; // the poses do not exist yet: the start follows the preferred tilt
+  if (o.spindle_rpm > 0.0) {
+    post.program.spindle_rpm = o.spindle_rpm;
+  }
+  cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
+                      {2 * plan.ball_radius, plan.ball_radius},
+                      !plan.fixed_axis};
+  return JobSpec{std::move(cage), std::move(surface), plan,   std::move(machine),
+                 post,            header,             job_files(o)};
+}
+
+std::string encode_job(const RunOptions& o) {
+  const auto& p = o.plan;
+  return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
+                     "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
+                     "tolerance={} level={} refine={} spindle={}",
+                     escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
+                     escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+                     number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
+                     number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
+                     p.refine, number(o.spindle_rpm));
+}
+
+Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
+  std::map<std::string, std::string, std::less<>> fields;
+  while (!text.empty()) {
+    const auto end = std::min(text.find(' '), text.size());
+    const auto field = text.substr(0, end);
+    const auto eq = field.find('=');
+    if (eq != std::string_view::npos) {
+      fields[std::string(field.substr(0, eq))] = unescape(field.substr(eq + 1));
+    }
+    text.remove_prefix(std::min(end + 1, text.size()));
+  }
+  RunOptions o;
+  try {
+    const auto get = [&](const char* key) -> const std::string& {
+      const auto it = fields.find(key);
+      if (it == fields.end()) {
+        throw std::invalid_argument(key);
+      }
+      return it->second;
+    };
+    o.cage = get("cage");
+    o.machine = get("machine");
+    o.output = get("output");
+    o.plan.tool = get("tool");
+    o.plan.scallop = std::stod(get("scallop"));
+    o.plan.direction = get("direction");
+    o.plan.baseline = get("baseline") == "1";
+    o.plan.axis_radius = std::stod(get("axis_radius"));
+    o.plan.axis = get("axis");
+    o.plan.one_way = get("one_way") == "1";
+    o.plan.feed = std::stod(get("feed"));
+    o.plan.plunge_feed = std::stod(get("plunge_feed"));
+    o.plan.clearance = std::stod(get("clearance"));
+    o.plan.tolerance = std::stod(get("tolerance"));
+    o.plan.level = std::stoi(get("level"));
+    o.plan.refine = std::stoi(get("refine"));
+    o.spindle_rpm = std::stod(get("spindle"));
+  } catch (const std::exception& e) {
+    return fail(ErrorCode::bad_input, std::string("job record without a valid '") + e.what() + "'",
+                where);
+  }
+  return o;
+}
+
+} // namespace subfeed::cli

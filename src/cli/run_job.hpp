@@ -1,0 +1,47 @@
+#pragma once
+// What defines a job for `run` and `resume`: the cage, the machine, the planning flags and
+// where the files go; how it is built into a JobSpec; and how it is written into the
+// journal (one `event job key=value ...` line) so that a resume can rebuild the very same
+// program when subfeed itself died before the .nc was complete.
+
+#include "base/error.hpp"
+#include "job_pipeline.hpp"
+#include "logger.hpp"
+#include "plan_flags.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace subfeed::cli {
+
+struct RunOptions {
+  std::string cage;
+  PlanFlags plan;
+  std::string machine;
+  std::string output;  // BASE: BASE.cl, BASE.nc, BASE.journal; default the cage without .obj
+  std::string journal; // default BASE.journal
+  double spindle_rpm = 0.0;
+  std::string port, tcp;
+  bool sim = false;
+  double sim_speed = 1.0;
+  int sim_baud = -1;
+  bool json = false;
+};
+
+// The job's flags (planning, machine, output, spindle); not the link's.
+void add_run_flags(CLI::App& cmd, RunOptions& o);
+
+[[nodiscard]] JobFiles job_files(const RunOptions& o);
+[[nodiscard]] std::filesystem::path journal_path(const RunOptions& o);
+// Loads the machine and the cage, checks the flags and builds the whole job's definition.
+[[nodiscard]] Expected<JobSpec> job_spec(const RunOptions& o, Logger& log);
+
+// "key=value ..." with %-escaped values; decode_job fills the job's fields back.
+[[nodiscard]] std::string encode_job(const RunOptions& o);
+[[nodiscard]] Expected<RunOptions> decode_job(std::string_view text, const Where& where);
+
+} // namespace subfeed::cli
