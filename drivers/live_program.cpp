@@ -5,8 +5,8 @@ namespace subfeed::drivers {
 namespace {
 
 Error read_twice(const std::string& name) {
-  return Error{ErrorCode::usage, "a program that is still being posted cannot be read twice",
-               {name, 0, {}}};
+  return Error{
+      ErrorCode::usage, "a program that is still being posted cannot be read twice", {name, 0, {}}};
 }
 
 } // namespace

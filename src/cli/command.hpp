@@ -26,5 +26,6 @@ void add_check_command(CLI::App& app, Action& chosen);
 void add_plan_command(CLI::App& app, Action& chosen);
 void add_verify_command(CLI::App& app, Action& chosen);
 void add_run_command(CLI::App& app, Action& chosen);
+void add_resume_command(CLI::App& app, Action& chosen);
 
 } // namespace subfeed::cli

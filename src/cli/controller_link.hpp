@@ -23,9 +23,9 @@ struct LinkRequest {
   std::string protocol; // grbl or fanuc
   double connect_timeout_s = 5.0;
   double sim_speed = 1.0;
-  int sim_baud = -1;                // -1: the link's baud
-  bool sim_requests_tape = false;   // fanuc sim: asks for the tape (DC1) on connect
-  bool eia_cr = false;              // fanuc: CR ends blocks
+  int sim_baud = -1;              // -1: the link's baud
+  bool sim_requests_tape = false; // fanuc sim: asks for the tape (DC1) on connect
+  bool eia_cr = false;            // fanuc: CR ends blocks
 };
 
 struct Link {

@@ -18,8 +18,7 @@ struct Delivery {
 
 // What a controller would have run of the program file: GRBL lines as the sender prepares
 // them; Fanuc blocks as written, without the '%' framing and the O-number line.
-Expected<Delivery> expected_delivery(const std::filesystem::path& nc, bool fanuc,
-                                     int line_limit) {
+Expected<Delivery> expected_delivery(const std::filesystem::path& nc, bool fanuc, int line_limit) {
   std::ifstream in(nc, std::ios::binary);
   if (!in) {
     return fail(ErrorCode::bad_input, "cannot read the posted program", {nc.string(), 0, {}});
@@ -84,14 +83,13 @@ Expected<void> verify_dry_run(const Link& link, const DryRunFiles& files,
   options.tolerance = tolerance_mm;
   options.cl = files.cl;
   SUBFEED_TRY_ASSIGN(const auto r, post::check_program(files.nc, machine, options));
-  log.info(fmt::format("  replayed through the {} kinematics: tool tip within {:.6f} mm of the CL "
-                       "path{} (tolerance {} mm), tool axis within {:.4f} deg{}; limit "
-                       "violations {}{}, rotary jumps {}{}, blocks over an axis max feed {}{}",
-                       post::to_string(machine.kinematics), r.tip_deviation.value,
-                       at(r.tip_deviation), tolerance_mm, r.axis_deviation.value,
-                       at(r.axis_deviation), r.limit_violations, at(r.first_limit_violation),
-                       r.rotary_jumps, at(r.first_rotary_jump), r.over_feed,
-                       at(r.first_over_feed)));
+  log.info(fmt::format(
+      "  replayed through the {} kinematics: tool tip within {:.6f} mm of the CL "
+      "path{} (tolerance {} mm), tool axis within {:.4f} deg{}; limit "
+      "violations {}{}, rotary jumps {}{}, blocks over an axis max feed {}{}",
+      post::to_string(machine.kinematics), r.tip_deviation.value, at(r.tip_deviation), tolerance_mm,
+      r.axis_deviation.value, at(r.axis_deviation), r.limit_violations, at(r.first_limit_violation),
+      r.rotary_jumps, at(r.first_rotary_jump), r.over_feed, at(r.first_over_feed)));
   if (!delivered) {
     return fail(ErrorCode::machine_fault,
                 fmt::format("dry run: the controller ran {} blocks that differ from the {} "

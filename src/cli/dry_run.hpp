@@ -19,7 +19,7 @@ struct DryRunFiles {
 
 // An error (non-zero exit) when delivery or the replay fails; the report is logged either way.
 [[nodiscard]] Expected<void> verify_dry_run(const Link& link, const DryRunFiles& files,
-                                            const post::MachineConfig& machine,
-                                            double tolerance_mm, Logger& log);
+                                            const post::MachineConfig& machine, double tolerance_mm,
+                                            Logger& log);
 
 } // namespace subfeed::cli

@@ -84,22 +84,24 @@ Expected<void> JobPipeline::plan_all() {
     plane_ = plane;
     planes_ = planes;
   };
-  SUBFEED_TRY(planner.run([&](const cl::ClPose& pose) -> Expected<void> {
-    cl::ClPose numbered = pose;
-    numbered.line = writer.write(pose);
-    if (pose.kind == cl::MoveKind::feed && last) {
-      cut_mm += distance(*last, pose);
-      cut_planned_ = cut_mm;
-    }
-    last = pose;
-    if (pose.kind == cl::MoveKind::plunge) {
-      ++passes_;
-    }
-    if (!poses_.push(numbered)) {
-      return std::unexpected(stopped_reading());
-    }
-    return {};
-  }, on_plane));
+  SUBFEED_TRY(planner.run(
+      [&](const cl::ClPose& pose) -> Expected<void> {
+        cl::ClPose numbered = pose;
+        numbered.line = writer.write(pose);
+        if (pose.kind == cl::MoveKind::feed && last) {
+          cut_mm += distance(*last, pose);
+          cut_planned_ = cut_mm;
+        }
+        last = pose;
+        if (pose.kind == cl::MoveKind::plunge) {
+          ++passes_;
+        }
+        if (!poses_.push(numbered)) {
+          return std::unexpected(stopped_reading());
+        }
+        return {};
+      },
+      on_plane));
   SUBFEED_TRY(writer.finish());
   totals_.plan = planner.summary();
   return {};
@@ -143,11 +145,10 @@ Expected<void> JobPipeline::post_all() {
                                          (link ? " link\n" : " cut\n"));
                                put_line(line, cut_mm, minutes);
                              });
-  post::PostProcessor post(machine, *kinematics, post_options,
-                           [&](const post::MotionBlock& block) {
-                             minutes += model.add(block);
-                             return writer.write(block);
-                           });
+  post::PostProcessor post(machine, *kinematics, post_options, [&](const post::MotionBlock& block) {
+    minutes += model.add(block);
+    return writer.write(block);
+  });
   const auto run = [&]() -> Expected<void> {
     SUBFEED_TRY(writer.begin());
     std::optional<cl::ClPose> last;
@@ -213,12 +214,11 @@ JobProgress JobPipeline::progress(long acked_line) {
   p.minutes_done = acked_.minutes;
   const double planned_mm = cut_planned_;
   const long plane = plane_, planes = planes_;
-  p.cut_total_mm = p.planned || plane <= 0 ? planned_mm
-                                           : planned_mm * static_cast<double>(planes) /
-                                                 static_cast<double>(plane);
+  p.cut_total_mm = p.planned || plane <= 0
+                       ? planned_mm
+                       : planned_mm * static_cast<double>(planes) / static_cast<double>(plane);
   const double rate = posted_.cut_mm > 0.0 ? posted_.minutes / posted_.cut_mm : 0.0;
-  p.minutes_total =
-      posted_.minutes + std::max(0.0, p.cut_total_mm - posted_.cut_mm) * rate;
+  p.minutes_total = posted_.minutes + std::max(0.0, p.cut_total_mm - posted_.cut_mm) * rate;
   return p;
 }
 

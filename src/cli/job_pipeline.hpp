@@ -44,8 +44,8 @@ struct JobTotals {
   geometry::PlanSummary plan;
   post::PostStats post;
   long lines = 0;
-  double cut_mm = 0.0;        // feed moves of the CL path
-  double machine_min = 0.0;   // modelled machine time of the whole program
+  double cut_mm = 0.0;      // feed moves of the CL path
+  double machine_min = 0.0; // modelled machine time of the whole program
 };
 
 // Totals are estimates while planning goes on (the cutting length of the planes still to
@@ -99,7 +99,7 @@ private:
   std::mutex ledger_mutex_;
   std::deque<LedgerEntry> ledger_;
   LedgerEntry acked_{0, 0.0, 0.0};
-  LedgerEntry posted_{0, 0.0, 0.0};                // under ledger_mutex_
+  LedgerEntry posted_{0, 0.0, 0.0}; // under ledger_mutex_
   std::optional<Error> plan_error_, post_error_;
   JobTotals totals_;
   std::thread planner_, poster_;

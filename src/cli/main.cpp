@@ -39,6 +39,7 @@ int run(int argc, char** argv) {
   subfeed::cli::add_inspect_command(app, chosen);
   subfeed::cli::add_plan_command(app, chosen);
   subfeed::cli::add_run_command(app, chosen);
+  subfeed::cli::add_resume_command(app, chosen);
   subfeed::cli::add_verify_command(app, chosen);
   subfeed::cli::add_config_command(app, chosen);
   subfeed::cli::add_send_command(app, chosen);

@@ -134,7 +134,8 @@ void add_run_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--sim-speed", o->sim_speed,
                   "With --sim: run the machine N times faster than real time")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited; DNC: 115200)")
+  cmd->add_option("--sim-baud", o->sim_baud,
+                  "With --sim: emulated wire speed (0 = unlimited; DNC: 115200)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_job(*o, log); }; });

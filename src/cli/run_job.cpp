@@ -61,9 +61,9 @@ void add_run_flags(CLI::App& cmd, RunOptions& o) {
 }
 
 JobFiles job_files(const RunOptions& o) {
-  const std::filesystem::path base =
-      o.output.empty() ? std::filesystem::path(o.cage).replace_extension()
-                       : std::filesystem::path(o.output);
+  const std::filesystem::path base = o.output.empty()
+                                         ? std::filesystem::path(o.cage).replace_extension()
+                                         : std::filesystem::path(o.output);
   auto cl = base, nc = base;
   cl += ".cl";
   nc += ".nc";
@@ -96,8 +96,8 @@ Expected<JobSpec> job_spec(const RunOptions& o, Logger& log) {
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * plan.ball_radius, plan.ball_radius},
                       !plan.fixed_axis};
-  return JobSpec{std::move(cage), std::move(surface), plan,   std::move(machine),
-                 post,            header,             job_files(o)};
+  return JobSpec{std::move(cage), std::move(surface), plan, std::move(machine), post,
+                 header,          job_files(o)};
 }
 
 std::string encode_job(const RunOptions& o) {
@@ -105,8 +105,9 @@ std::string encode_job(const RunOptions& o) {
   return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
                      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
                      "tolerance={} level={} refine={} spindle={}",
-                     escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
-                     escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+                     escape(o.cage), escape(o.machine),
+                     escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
+                     number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
                      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
                      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
                      p.refine, number(o.spindle_rpm));

@@ -7,8 +7,8 @@
 #include "controller_link.hpp"
 #include "stream_reporter.hpp"
 
-#include "drivers/fanuc_streamer.hpp"
 #include "drivers/fanuc_program.hpp"
+#include "drivers/fanuc_streamer.hpp"
 #include "drivers/gcode_source.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/journal.hpp"

@@ -37,7 +37,6 @@ std::string state_text(const drivers::StreamProgress& p) {
                                  : p.status->state;
 }
 
-
 StreamReporter::StreamReporter(Logger& log, bool json)
     : log_(log), json_(json),
       terminal_(!json && log.verbosity() != Verbosity::quiet && ::isatty(STDERR_FILENO) != 0) {}

@@ -36,7 +36,6 @@ public:
   void end_progress_line();
 
 private:
-
   Logger& log_;
   bool json_;
   bool terminal_;

@@ -8,8 +8,8 @@
 // O-number, blocks with LF or CR, '%' trailer) unless the file is framed already.
 
 #include "base/error.hpp"
-#include "drivers/control_inbox.hpp"
 #include "drivers/block_source.hpp"
+#include "drivers/control_inbox.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/transport.hpp"

@@ -14,8 +14,8 @@
 
 #include "base/error.hpp"
 #include "drivers/control_inbox.hpp"
-#include "drivers/line_source.hpp"
 #include "drivers/grbl_reply.hpp"
+#include "drivers/line_source.hpp"
 #include "drivers/transport.hpp"
 
 #include <chrono>

@@ -47,8 +47,14 @@ public:
   void message(std::string_view line) override { inner_.message(line); }
   void line_error(const LineError& e) override { inner_.line_error(e); }
   void phase(std::string_view name) override;
-  void line_sent(long line, long bytes) override { journal_.sent(line, bytes); }
-  void line_answered(long line, int error_code) override { journal_.answered(line, error_code); }
+  void line_sent(long line, long bytes) override {
+    journal_.sent(line, bytes);
+    inner_.line_sent(line, bytes);
+  }
+  void line_answered(long line, int error_code) override {
+    journal_.answered(line, error_code);
+    inner_.line_answered(line, error_code);
+  }
   void link_event(std::string_view name, std::string_view detail) override {
     journal_.event(name, detail);
   }

@@ -1,0 +1,204 @@
+// `subfeed run` and `subfeed resume` as a user runs them: the sample seat planned, posted and
+// streamed over real ptys to the simulated controllers, interrupted, and resumed.
+
+#include "drivers/gcode_line.hpp"
+#include "support/run_process.hpp"
+#include "support/temp_dir.hpp"
+
+#include <catch2/catch.hpp>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+using subfeed::testing::BackgroundProcess;
+using subfeed::testing::run_process;
+using namespace std::chrono_literals;
+
+namespace {
+
+const std::string bin = SUBFEED_BIN;
+const std::string sim_bin = SUBFEED_SIM_BIN;
+const std::string source_dir = SUBFEED_SOURCE_DIR;
+const std::string seat = source_dir + "/examples/seat.obj";
+const std::string grblhal = source_dir + "/configs/grblhal-xyzac-trt.toml";
+const std::string fanuc = source_dir + "/configs/fanuc-xyzac-trt.toml";
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// Waits until a growing file has stopped growing (the machine has run what it holds).
+void wait_until_still(const std::string& path) {
+  std::uintmax_t last = 0;
+  for (int i = 0; i < 100; ++i) {
+    std::this_thread::sleep_for(300ms);
+    const auto size = std::filesystem::file_size(path);
+    if (size == last) {
+      return;
+    }
+    last = size;
+  }
+}
+
+std::vector<std::string> job(const std::string& base, const std::string& machine) {
+  return {bin,      "run",       seat,   "--machine", machine, "--tool",
+          "ball:6", "--scallop", "0.02", "-o",        base};
+}
+
+} // namespace
+
+TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted, on the CL path",
+          "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  auto argv = job(base, grblhal);
+  argv.insert(argv.end(), {"--sim", "--sim-speed", "50", "--sim-baud", "0"});
+  const auto r = run_process(argv);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
+  CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
+  CHECK(r.out.find("first block reached the controller") != std::string::npos);
+  for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
+    CHECK(std::filesystem::exists(base + ext));
+  }
+  const auto journal = read_file(base + ".journal");
+  CHECK(journal.find(" event job cage=") != std::string::npos);
+  CHECK(journal.find(" end done\n") != std::string::npos);
+}
+
+TEST_CASE("run --sim on the seat for a Fanuc-style A/C trunnion by DNC drip feed", "[slow]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  auto argv = job(base, fanuc);
+  argv.insert(argv.end(), {"--sim", "--sim-speed", "50", "--sim-baud", "0"});
+  const auto r = run_process(argv);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("the simulated control executed") != std::string::npos);
+  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
+  CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
+}
+
+TEST_CASE("subfeed killed mid-job: resume rebuilds the program and runs every line exactly once",
+          "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  const std::string log = (dir.path() / "executed.log").string();
+  BackgroundProcess sim({sim_bin, "grbl", "--grblhal", "--axes", "6", "--rx", "1024", "--planner",
+                         "100", "--line-limit", "256", "--speed", "3", "--baud", "0", "--log",
+                         log});
+  const std::string port = sim.first_line();
+  REQUIRE(port.starts_with("/dev/pts/"));
+  auto argv = job(base, grblhal);
+  argv.insert(argv.end(), {"--port", port});
+  BackgroundProcess sender(argv);
+  std::this_thread::sleep_for(8s);
+  sender.signal(SIGKILL);
+  (void)sender.wait();
+  wait_until_still(log);
+  REQUIRE_FALSE(std::filesystem::exists(base + ".nc")); // it died before the program was whole
+  const auto resumed = run_process({bin, "resume", base + ".journal", "--port", port, "--yes"});
+  INFO(resumed.out << resumed.err);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(resumed.out.find("(the machine stands at the end of that line)") != std::string::npos);
+  // The executed lines are the program's, in order, each once; the only others are the
+  // restart blocks (modes and the approach), all G words.
+  std::vector<std::string> program;
+  for (const auto& line : lines_of(base + ".nc")) {
+    program.push_back(subfeed::drivers::prepare_line(line, {256, false}, {}).value().text);
+  }
+  std::size_t next = 0;
+  int restart_blocks = 0;
+  for (const auto& line : lines_of(log)) {
+    if (next < program.size() && line == program[next]) {
+      ++next;
+    } else {
+      CHECK(line.front() == 'G');
+      ++restart_blocks;
+    }
+  }
+  CHECK(next == program.size());
+  CHECK(restart_blocks > 0);
+  CHECK(restart_blocks <= 16);
+}
+
+TEST_CASE("a simulated controller killed mid-job: resume on a new one skips no block", "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  const std::string first_log = (dir.path() / "first.log").string();
+  const std::string second_log = (dir.path() / "second.log").string();
+  const std::vector<std::string> sim_args{
+      sim_bin, "grbl",         "--grblhal", "--axes",  "6", "--rx",   "1024", "--planner",
+      "100",   "--line-limit", "256",       "--speed", "3", "--baud", "0",    "--log"};
+  auto first_args = sim_args;
+  first_args.push_back(first_log);
+  BackgroundProcess first(first_args);
+  const std::string port = first.first_line();
+  auto argv = job(base, grblhal);
+  argv.insert(argv.end(), {"--port", port});
+  BackgroundProcess sender(argv);
+  std::this_thread::sleep_for(8s);
+  first.signal(SIGKILL);
+  const auto failed = sender.wait();
+  CHECK(failed.exit_code == 3);
+  CHECK(failed.err.find("subfeed resume") != std::string::npos);
+  REQUIRE(std::filesystem::exists(base + ".nc")); // finished for the resume
+  auto second_args = sim_args;
+  second_args.push_back(second_log);
+  BackgroundProcess second(second_args);
+  const std::string port2 = second.first_line();
+  const auto resumed = run_process({bin, "resume", base + ".journal", "--port", port2, "--yes"});
+  INFO(resumed.out << resumed.err);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(resumed.out.find("may be cut again") != std::string::npos);
+  // Every program line ran on one controller or the other, in order.
+  std::vector<std::string> program;
+  for (const auto& line : lines_of(base + ".nc")) {
+    program.push_back(subfeed::drivers::prepare_line(line, {256, false}, {}).value().text);
+  }
+  const auto ran_first = lines_of(first_log);
+  REQUIRE(ran_first.size() < program.size());
+  const auto ran_second = lines_of(second_log);
+  std::size_t resumed_at = program.size();
+  for (std::size_t i = 0; i < ran_second.size(); ++i) {
+    const auto tail = std::equal(ran_second.begin() + static_cast<long>(i), ran_second.end(),
+                                 program.end() - static_cast<long>(ran_second.size() - i));
+    if (tail) {
+      resumed_at = program.size() - (ran_second.size() - i);
+      break;
+    }
+  }
+  CHECK(resumed_at <= ran_first.size());
+}
+
+TEST_CASE("Ctrl-C during run stops the machine without an alarm and finishes the files", "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  auto argv = job(base, grblhal);
+  argv.insert(argv.end(), {"--sim", "--sim-speed", "2"});
+  BackgroundProcess sender(argv);
+  std::this_thread::sleep_for(7s);
+  sender.signal(SIGINT);
+  const auto r = sender.wait();
+  CHECK(r.exit_code == 4);
+  CHECK(r.err.find("stopped by the user") != std::string::npos);
+  const auto journal = read_file(base + ".journal");
+  CHECK(journal.find("alarm") == std::string::npos);
+  CHECK(journal.find(" event hold") != std::string::npos);
+  CHECK(std::filesystem::exists(base + ".nc"));
+}
