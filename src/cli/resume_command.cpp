@@ -78,7 +78,7 @@ void apply_axis_words(std::string_view line, Joints& joints) {
 
 struct ProgramState {
   long lines = 0;
-  std::vector<std::pair<long, Joints>> window; // block ends of the lines searched
+  std::vector<std::pair<long, Joints>> window; // block ends of the motion lines searched
   Joints start_joints{};                       // at the end of the line before the window
 };
 
@@ -96,7 +96,8 @@ Expected<ProgramState> read_positions(const std::string& program, long lo, long 
     if (s.lines == lo - 1) {
       s.start_joints = joints;
     }
-    if (s.lines >= lo && s.lines <= hi) {
+    const bool moves = text.find_first_of("XYZABC") != std::string::npos;
+    if (s.lines >= lo && s.lines <= hi && moves) {
       s.window.emplace_back(s.lines, joints);
     }
   }
