@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace subfeed::post {
 
@@ -19,15 +20,18 @@ constexpr std::array<double, 3> samples{0.25, 0.5, 0.75};
 constexpr double sample_margin = 0.9;
 
 struct SegmentPoint {
-  double distance; // mm from p to the segment
-  double t;        // where along it the nearest point is, 0..1
+  double distance;         // mm from p to the segment
+  std::optional<double> t; // where along it the nearest point is, 0..1; none for a point
 };
 
 SegmentPoint nearest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const Vec3 ap{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
   const double len2 = dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(ap, ab) / len2, 0.0, 1.0) : 0.0;
+  if (len2 <= 0.0) {
+    return {std::sqrt(dot(ap, ap)), std::nullopt};
+  }
+  const double t = std::clamp(dot(ap, ab) / len2, 0.0, 1.0);
   const Vec3 d{ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
   return {std::sqrt(dot(d, d)), t};
 }
@@ -232,14 +236,9 @@ bool PostProcessor::within_tolerance(const Placed& from, const Placed& to) const
     // The axis is judged where the tip is along the segment, as `check` judges it: when the
     // tip creeps while the table turns, joint time and path position part ways.
     const SegmentPoint at = nearest_on_segment(p.tip, from.pose.tip, to.pose.tip);
-    const double s = dot(Vec3{to.pose.tip[0] - from.pose.tip[0], to.pose.tip[1] - from.pose.tip[1],
-                              to.pose.tip[2] - from.pose.tip[2]},
-                         Vec3{to.pose.tip[0] - from.pose.tip[0], to.pose.tip[1] - from.pose.tip[1],
-                              to.pose.tip[2] - from.pose.tip[2]}) > 0.0
-                         ? at.t
-                         : t;
     if (at.distance > sample_margin * split_tolerance_ ||
-        angle_deg(p.axis, slerp(a0, a1, s)) > sample_margin * options_.axis_tolerance) {
+        angle_deg(p.axis, slerp(a0, a1, at.t.value_or(t))) >
+            sample_margin * options_.axis_tolerance) {
       return false;
     }
   }

@@ -30,14 +30,32 @@ void JobReporter::line_answered(long line, int /*error_code*/) {
   }
 }
 
+void JobReporter::end_line() {
+  if (shown_) {
+    std::fputs("\n", stderr);
+    shown_ = false;
+  }
+}
+
 void JobReporter::message(std::string_view line) {
-  inner_.end_progress_line();
+  end_line();
   inner_.message(line);
 }
 
 void JobReporter::line_error(const drivers::LineError& error) {
-  inner_.end_progress_line();
+  end_line();
   inner_.line_error(error);
+}
+
+void JobReporter::finished(const drivers::StreamSummary& summary, std::optional<int> baud,
+                           int bits_per_character) {
+  end_line();
+  inner_.finished(summary, baud, bits_per_character);
+}
+
+void JobReporter::failed(const Error& error) {
+  end_line();
+  inner_.failed(error);
 }
 
 void JobReporter::progress(const drivers::StreamProgress& p) {
@@ -66,6 +84,7 @@ void JobReporter::progress(const drivers::StreamProgress& p) {
                  std::string(static_cast<std::size_t>(width - filled), '.').c_str(), percent,
                  j.passes, j.planned ? "" : "+", j.lines_posted, acks_ ? "acked" : "sent", done_,
                  clock_text(eta_s).c_str(), j.planned ? "" : "~", state.c_str());
+    shown_ = true;
   }
 }
 

@@ -28,14 +28,19 @@ public:
   void line_sent(long line, long bytes) override;
   void line_answered(long line, int error_code) override;
 
-  [[nodiscard]] StreamReporter& stream() { return inner_; }
+  // After the stream: its summary or error, below the progress line.
+  void finished(const drivers::StreamSummary& summary, std::optional<int> baud,
+                int bits_per_character);
+  void failed(const Error& error);
   [[nodiscard]] std::optional<double> first_block_s() const { return first_block_s_; }
-  [[nodiscard]] long last_done_line() const { return done_line_; }
 
 private:
+  void end_line();
+
   StreamReporter inner_;
   JobPipeline& job_;
   bool json_, terminal_, acks_;
+  bool shown_ = false; // a progress line is on the terminal
   double speed_;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_update_{};

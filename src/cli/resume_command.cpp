@@ -21,6 +21,7 @@
 #include "stream_reporter.hpp"
 
 #include "drivers/fanuc_modal_state.hpp"
+#include "drivers/fanuc_streamer.hpp"
 #include "drivers/gcode_source.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/journal.hpp"
@@ -332,7 +333,8 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
   request.tcp = o.tcp;
   request.protocol = "grbl";
   request.connect_timeout_s = o.connect_timeout_s;
-  SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial_options_for(machine)));
+  const auto serial = serial_options_for(machine);
+  SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial));
   SUBFEED_TRY_ASSIGN(const auto status, probe(*link.transport, o));
   if (status.state == "Alarm") {
     return fail(ErrorCode::machine_fault,
@@ -420,7 +422,7 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
     reporter.failed(summary.error());
     return std::unexpected(summary.error());
   }
-  reporter.finished(*summary, link.baud, 10);
+  reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));
   return {};
 }
 

@@ -25,8 +25,9 @@ namespace subfeed::cli {
 
 namespace {
 
-Expected<drivers::StreamSummary> stream(const RunOptions& o, const post::MachineConfig& machine,
-                                        Link& link, JobPipeline& job, drivers::ControlInbox& inbox,
+Expected<drivers::StreamSummary> stream(const RunOptions& o, int sim_baud,
+                                        const post::MachineConfig& machine, Link& link,
+                                        JobPipeline& job, drivers::ControlInbox& inbox,
                                         drivers::StreamObserver& observer) {
   const std::string name = job_files(o).nc.string();
   if (machine.controller.protocol == post::Protocol::fanuc) {
@@ -37,8 +38,8 @@ Expected<drivers::StreamSummary> stream(const RunOptions& o, const post::Machine
     drivers::LiveBlocks program(name, job.program());
     drivers::FanucStreamOptions dnc;
     dnc.serial = serial_options_for(machine);
-    if (o.sim && o.sim_baud > 0) {
-      dnc.serial.baud = o.sim_baud; // the sender paces itself at the simulated wire's speed
+    if (o.sim && sim_baud > 0) {
+      dnc.serial.baud = sim_baud; // the sender paces itself at the simulated wire's speed
     }
     dnc.program_number = machine.controller.program_number;
     return drivers::stream_fanuc(*link.transport, program, dnc, &inbox, observer);
@@ -90,12 +91,10 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
   journal.event("job", encode_job(o));
   const ControlThread control(*inbox, !o.json);
   job.start();
-  RunOptions streamed = o;
-  streamed.sim_baud = request.sim_baud;
-  const auto summary = stream(streamed, machine, link, job, *inbox, observer);
+  const auto summary = stream(o, request.sim_baud, machine, link, job, *inbox, observer);
   journal.end(summary);
   if (!summary) {
-    reporter.stream().failed(summary.error());
+    reporter.failed(summary.error());
     job.detach();
     if (const auto done = job.finish(); done) {
       log.warning(fmt::format("the program is complete in {}: `subfeed resume {}` continues "
@@ -105,7 +104,7 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
     return std::unexpected(summary.error());
   }
   SUBFEED_TRY_ASSIGN(const auto totals, job.finish());
-  reporter.stream().finished(*summary, link.baud, drivers::bits_per_character(serial));
+  reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));
   report_totals(totals, files, reporter, log);
   if (o.sim) {
     SUBFEED_TRY(verify_dry_run(link, {files.cl, files.nc}, machine, tolerance, log));

@@ -137,19 +137,33 @@ Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
     o.machine = get("machine");
     o.output = get("output");
     o.plan.tool = get("tool");
-    o.plan.scallop = std::stod(get("scallop"));
+    const auto real = [&](const char* key) {
+      try {
+        return std::stod(get(key));
+      } catch (const std::logic_error&) {
+        throw std::invalid_argument(key);
+      }
+    };
+    const auto integer = [&](const char* key) {
+      try {
+        return std::stoi(get(key));
+      } catch (const std::logic_error&) {
+        throw std::invalid_argument(key);
+      }
+    };
+    o.plan.scallop = real("scallop");
     o.plan.direction = get("direction");
     o.plan.baseline = get("baseline") == "1";
-    o.plan.axis_radius = std::stod(get("axis_radius"));
+    o.plan.axis_radius = real("axis_radius");
     o.plan.axis = get("axis");
     o.plan.one_way = get("one_way") == "1";
-    o.plan.feed = std::stod(get("feed"));
-    o.plan.plunge_feed = std::stod(get("plunge_feed"));
-    o.plan.clearance = std::stod(get("clearance"));
-    o.plan.tolerance = std::stod(get("tolerance"));
-    o.plan.level = std::stoi(get("level"));
-    o.plan.refine = std::stoi(get("refine"));
-    o.spindle_rpm = std::stod(get("spindle"));
+    o.plan.feed = real("feed");
+    o.plan.plunge_feed = real("plunge_feed");
+    o.plan.clearance = real("clearance");
+    o.plan.tolerance = real("tolerance");
+    o.plan.level = integer("level");
+    o.plan.refine = integer("refine");
+    o.spindle_rpm = real("spindle");
   } catch (const std::exception& e) {
     return fail(ErrorCode::bad_input, std::string("job record without a valid '") + e.what() + "'",
                 where);

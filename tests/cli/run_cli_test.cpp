@@ -204,3 +204,52 @@ TEST_CASE("Ctrl-C during run stops the machine without an alarm and finishes the
   CHECK(journal.find(" event hold") != std::string::npos);
   CHECK(std::filesystem::exists(base + ".nc"));
 }
+
+TEST_CASE("run with a bad machine config names it and writes nothing", "[unit]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  const std::string machine = (dir.path() / "m.toml").string();
+  std::ofstream(machine) << "[machine]\nname = \"x\"\nkinematics = \"warp-drive\"\n";
+  auto argv = job(base, machine);
+  argv.insert(argv.end(), {"--sim"});
+  const auto r = run_process(argv);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find(machine) != std::string::npos);
+  CHECK(r.err.find("kinematics") != std::string::npos);
+  for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
+    CHECK_FALSE(std::filesystem::exists(base + ext));
+  }
+}
+
+TEST_CASE("resume refuses journals it cannot continue, in one line naming the journal", "[unit]") {
+  subfeed::testing::TempDir dir;
+  const std::string journal = (dir.path() / "job.journal").string();
+  const auto resume = [&](const std::string& text) {
+    std::ofstream(journal) << text;
+    return run_process({bin, "resume", journal, "--port", "/dev/null", "--yes"});
+  };
+  SECTION("not a journal") {
+    const auto r = resume("G1 X1\n");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "subfeed: error: " + journal + ":1: not a subfeed journal (no start record)\n");
+  }
+  SECTION("a finished job") {
+    const auto r = resume("0 start protocol=grbl program=a.nc link=/dev/pts/9\n"
+                          "5 sent line=1 bytes=4\n7 answered line=1 ok\n9 end done\n");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "subfeed: error: " + journal + ": the job finished: nothing to resume\n");
+  }
+  SECTION("a DNC job") {
+    const auto r = resume("0 start protocol=fanuc program=a.nc link=/dev/pts/9\n"
+                          "5 sent line=1 bytes=4\n");
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("DNC jobs report no position") != std::string::npos);
+  }
+  SECTION("a damaged job record") {
+    const auto r = resume("0 start protocol=grbl program=a.nc link=/dev/pts/9\n"
+                          "1 event job cage=seat.obj machine=m.toml output=seat tool=ball:6 "
+                          "scallop=zero\n");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(journal + ": job: job record without a valid 'scallop'") != std::string::npos);
+  }
+}
