@@ -16,7 +16,9 @@ constexpr int max_split_depth = 30;
 constexpr double moved = 1e-9; // mm or deg: less is no motion
 // Joint-linear motion is checked at these fractions of a block; the margin covers the
 // deviation between samples (the tests sample densely to hold the post to the tolerance).
-constexpr std::array<double, 3> samples{0.25, 0.5, 0.75};
+// Quarters are not enough: where C turns fast while the tip creeps (passing near the pole)
+// the tip runs past the segment's end late in the block and comes back.
+constexpr std::array<double, 7> samples{0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875};
 constexpr double sample_margin = 0.9;
 
 struct SegmentPoint {
@@ -354,8 +356,10 @@ Expected<void> PostProcessor::add(const cl::ClPose& pose) {
   } else if (step.reposition) {
     ++stats_.repositions;
     SUBFEED_TRY(retract(*last_));
+    // Back along the segment from the new joints, so that the cut from `again` to `next`
+    // needs no turn of the branch a reposition exists to avoid.
     const Placed again{last_->pose,
-                       tracker_.nearest({last_->pose.tip, last_->pose.axis}, step.joints)};
+                       tracker_.follow(step.joints, {last_->pose.tip, last_->pose.axis})};
     SUBFEED_TRY(position(again, true));
     SUBFEED_TRY(cut_segment(again, next, false));
   } else {

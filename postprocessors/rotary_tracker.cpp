@@ -1,6 +1,7 @@
 #include "post/rotary_tracker.hpp"
 
 #include "angles.hpp"
+#include "vector_math.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,27 @@ constexpr double tie = 1e-9;         // deg: rotary moves this close are equally
 
 ToolPose tool_pose(const cl::ClPose& pose) {
   return {pose.tip, pose.axis};
+}
+
+// Angle, degrees, between the C axis (+Z of the work) and the nearest point of the
+// great-circle arc from `a` to `b`: how close a tool turning from one to the other passes
+// the pole.
+double pole_distance_deg(const Vec3& a, const Vec3& b) {
+  const double ends = std::min(angle_deg(a, {0, 0, 1}), angle_deg(b, {0, 0, 1}));
+  Vec3 n = cross(a, b);
+  const double length = std::sqrt(dot(n, n));
+  if (length < 1e-15) {
+    return ends;
+  }
+  for (auto& v : n) {
+    v /= length;
+  }
+  // The great circle's point nearest the pole, and whether it lies between a and b.
+  const Vec3 p{-n[2] * n[0], -n[2] * n[1], 1.0 - n[2] * n[2]};
+  if (dot(cross(a, p), n) < 0.0 || dot(cross(p, b), n) < 0.0) {
+    return ends;
+  }
+  return std::asin(std::min(std::abs(n[2]), 1.0)) / radians_per_degree;
 }
 
 std::string format_value(double value) {
@@ -159,16 +181,62 @@ void RotaryTracker::start_at(const JointPosition& joints) {
   started_ = true;
 }
 
+JointPosition RotaryTracker::follow(const JointPosition& start, const ToolPose& to) const {
+  // Small steps along the tool's great circle, each taking the nearest solution: a step
+  // that turns the rotaries more than `stride` degrees is halved, so the branch never
+  // jumps (the other branch is ~180 deg away).
+  constexpr double stride = 5.0;
+  constexpr double finest = 1e-9;
+  const ToolPose from = kinematics_->forward(start);
+  JointPosition at = start;
+  double t = 0.0;
+  double dt = 0.125;
+  while (t < 1.0) {
+    const double next = std::min(1.0, t + dt);
+    ToolPose p;
+    for (std::size_t i = 0; i < 3; ++i) {
+      p.tip[i] = from.tip[i] + next * (to.tip[i] - from.tip[i]);
+    }
+    p.axis = slerp(from.axis, to.axis, next);
+    const JointPosition j = nearest(p, at);
+    if (rotary_distance(j, at) > stride && dt > finest) {
+      dt *= 0.5;
+      continue;
+    }
+    at = j;
+    t = next;
+    dt *= 2.0;
+  }
+  return at;
+}
+
+JointPosition RotaryTracker::continuous(const ToolPose& target, const JointPosition& free) const {
+  // Flipping the tilt's sign means passing through the pole, where C may turn freely; the
+  // tool stays near its path only if the path itself passes within the cone. Otherwise C
+  // must follow the tool's azimuth round the pole, however far that turns it.
+  const bool flips = free[tilt_] * current_[tilt_] < 0.0;
+  if (!started_ || tilt_ == 0 || !flips ||
+      pole_distance_deg(kinematics_->forward(current_).axis, target.axis) <=
+          machine_->post.singularity_cone) {
+    return free;
+  }
+  return follow(current_, target);
+}
+
 Expected<TrackedStep> RotaryTracker::step(const cl::ClPose& pose) {
-  const auto c = candidates(tool_pose(pose), current_);
+  const ToolPose target = tool_pose(pose);
+  auto c = candidates(target, current_);
   const JointPosition* free = best(c.unconstrained, current_);
-  const JointPosition* chosen = best(c.feasible, current_);
+  JointPosition reach = free != nullptr ? continuous(target, *free) : current_;
+  if (free != nullptr && rotary_distance(reach, *free) > tie) {
+    c = candidates(target, reach);
+  }
+  const JointPosition* chosen = best(c.feasible, reach);
   if (chosen == nullptr) {
-    return unreachable(pose, free != nullptr ? *free : JointPosition{});
+    return unreachable(pose, reach);
   }
   TrackedStep step{*chosen, false, c.in_cone};
-  step.reposition = started_ && free != nullptr &&
-                    rotary_distance(*chosen, current_) > rotary_distance(*free, current_) + 1e-6;
+  step.reposition = started_ && free != nullptr && rotary_distance(*chosen, reach) > 1e-6;
   start_at(*chosen);
   return step;
 }

@@ -21,15 +21,23 @@ using Vec3 = std::array<double, 3>;
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
-// Angle between two directions, degrees; accurate for tiny angles too.
+[[nodiscard]] inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// Angle between two directions, radians; accurate for tiny angles too (acos is not).
+[[nodiscard]] inline double angle_rad(const Vec3& a, const Vec3& b) {
+  const Vec3 c = cross(a, b);
+  return std::atan2(std::sqrt(dot(c, c)), dot(a, b));
+}
+
 [[nodiscard]] inline double angle_deg(const Vec3& a, const Vec3& b) {
-  const Vec3 c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return std::atan2(std::sqrt(dot(c, c)), dot(a, b)) / radians_per_degree;
+  return angle_rad(a, b) / radians_per_degree;
 }
 
 // Great-circle interpolation of unit vectors.
 [[nodiscard]] inline Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
-  const double omega = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+  const double omega = angle_rad(a, b);
   if (omega < 1e-12) {
     return a;
   }

@@ -180,6 +180,68 @@ TEST_CASE("through the pole: C holds still in the cone and no rotary axis jumps"
   }
 }
 
+TEST_CASE("past the pole just outside the cone: the continuous branch, no C swing in one block") {
+  // The tool axis sweeps along a straight line in the tangent plane that misses the pole by
+  // `miss` deg, a little more than the 0.05 deg cone, in a few coarse steps as a planner's
+  // passes do over a flat top. The endpoints' nearest solutions lie on opposite branches
+  // (A changes sign, C differs by less than the azimuth does), but no continuous joint motion
+  // joins them: the post must follow the azimuth with C instead.
+  TempDir dir;
+  const auto machine = trunnion();
+  for (const double miss : {0.06, 0.071, 0.2}) {
+    CAPTURE(miss);
+    const auto cl = sphere_cl(
+        dir,
+        [miss](double s) {
+          const double u = -0.5 + s; // deg along the line; the pole is passed between poses
+          return std::array{std::hypot(u, miss), std::atan2(miss, u) / deg};
+        },
+        7);
+    const auto posted = post_and_check(cl, machine);
+    require_clean(posted.check);
+  }
+}
+
+TEST_CASE("near the pole far from the C axis: the tip does not run past a segment's end") {
+  // A pass the planner made over the bench's wavy part, verbatim: 55 mm from the C axis the
+  // tool tilts 0.2 deg per 0.55 mm step past the pole at 0.6 deg, so C turns ~5 deg a block
+  // while the tip creeps. Joint-linear motion then carries the tip past the segment's end
+  // late in the block (4 um), where sampling a block at its quarters does not look.
+  TempDir dir;
+  const auto machine = post::load_machine_config(std::string(SUBFEED_SOURCE_DIR) +
+                                                 "/configs/grblhal-xyzac-trt.toml");
+  REQUIRE(machine);
+  const auto file = dir.path() / "pass.cl";
+  std::ofstream(file)
+      << "PARTNO WAVY\nUNITS/MM\nCUTTER/6.,3.\nMULTAX/ON\nRAPID\n"
+         "GOTO/-79.768297,-4.891411,1.986534,0.114894888,0.000780367,0.993377348\n"
+         "FEDRAT/1000.\n"
+         "GOTO/-59.999258,-4.920881,-1.806646,0.041853718,0.009912175,0.999074579\n"
+         "GOTO/-59.445754,-4.921416,-1.828957,0.038891837,0.010005357,0.999193334\n"
+         "GOTO/-58.890265,-4.922019,-1.849313,0.035238581,0.010149936,0.999327384\n"
+         "GOTO/-58.334750,-4.922514,-1.867617,0.031546768,0.010272322,0.999449489\n"
+         "GOTO/-57.777372,-4.923004,-1.883903,0.027204644,0.010410445,0.999575675\n"
+         "GOTO/-57.220033,-4.922902,-1.898093,0.022845783,0.010517512,0.999683676\n"
+         "GOTO/-56.664613,-4.923037,-1.910130,0.019097050,0.010564085,0.999761823\n"
+         "GOTO/-56.109154,-4.923159,-1.920050,0.015306362,0.010583291,0.999826840\n"
+         "GOTO/-55.553617,-4.923357,-1.927839,0.011460430,0.010616572,0.999877966\n"
+         "GOTO/-54.999930,-4.923514,-1.933465,0.008202285,0.010638651,0.999909767\n"
+         "GOTO/-54.446594,-4.923820,-1.936940,0.005051594,0.010643137,0.999930600\n"
+         "GOTO/-53.891122,-4.924098,-1.938276,0.001199093,0.010671825,0.999942335\n"
+         "GOTO/-53.335692,-4.924271,-1.937460,-0.002629261,0.010682472,0.999939484\n"
+         "GOTO/-52.778172,-4.924404,-1.934484,-0.007143544,0.010698793,0.999917249\n"
+         "GOTO/-52.220635,-4.923872,-1.929357,-0.011653269,0.010675067,0.999875114\n"
+         "GOTO/-51.665232,-4.923681,-1.922107,-0.015440834,0.010613601,0.999824451\n"
+         "GOTO/-51.109784,-4.923483,-1.912728,-0.019232371,0.010524914,0.999759642\n"
+         "GOTO/-50.554261,-4.923367,-1.901222,-0.023038121,0.010450578,0.999679964\n"
+         "GOTO/-50.000531,-4.923270,-1.887645,-0.026234497,0.010384421,0.999601878\n"
+         "GOTO/-49.447126,-4.923333,-1.871979,-0.029292834,0.010304156,0.999517761\n"
+         "GOTO/-48.891634,-4.923295,-1.854173,-0.032997420,0.010225944,0.999403122\n"
+         "FINI\n";
+  const auto posted = post_and_check(file, *machine, true, 256);
+  require_clean(posted.check);
+}
+
 TEST_CASE("a limited C axis: the look-ahead picks the turn that needs no unwinding") {
   // One and a half turns of C; C travels -400..400 deg. Starting at C near 0 the path runs
   // out of travel; starting one turn back it fits.
@@ -229,6 +291,32 @@ TEST_CASE("a branch change forced by the C travel: both branches, one retract") 
   const auto posted = post_and_check(cl, machine);
   require_clean(posted.check);
   CHECK(posted.summary.stats.repositions == 1);
+}
+
+TEST_CASE("a reposition beside the pole re-approaches on the branch it turned to") {
+  // C travels -200..200 and starts at 0 (no look-ahead). A sweep at 30 deg tilt takes C to
+  // -80; then the tool runs along a line in the tangent plane that misses the pole by
+  // 0.5 deg in 2 deg steps: C must turn -180 more, 127 of them in the one segment beside the
+  // pole, and runs out of travel there. The post retracts and comes back on the other branch;
+  // the last pose's solution nearest to the new one is still on the old branch there.
+  TempDir dir;
+  const auto machine = trunnion("min = -200.0\nmax = 200.0\nmax_feed = 20000\n");
+  const auto cl = sphere_cl(
+      dir,
+      [](double s) {
+        const int i = static_cast<int>(std::lround(s * 70.0));
+        if (i <= 40) {
+          return std::array{30.0, -90.0 - 80.0 * i / 40.0};
+        }
+        const double v = -31.0 + 2.0 * (i - 40); // deg along the line
+        const double dx = std::cos(10.0 * deg), dy = std::sin(10.0 * deg);
+        const double x = -0.5 * dy + v * dx, y = 0.5 * dx + v * dy;
+        return std::array{std::hypot(x, y), std::atan2(y, x) / deg};
+      },
+      70);
+  const auto posted = post_and_check(cl, machine, false);
+  require_clean(posted.check);
+  CHECK(posted.summary.stats.repositions >= 1);
 }
 
 TEST_CASE("a pose out of reach is an error naming its CL line, and no output is left") {

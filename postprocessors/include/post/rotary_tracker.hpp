@@ -1,7 +1,10 @@
 #pragma once
 // Chooses, pose after pose, which joint solution the machine takes: the rotary solution
 // choice of the post. Rules in order: travel limits (every axis), then continuity (the
-// smallest rotary move from where the machine is), then the config's preferred tilt sign.
+// smallest rotary move from where the machine is, except that the tilt changes sign only
+// where the path passes the pole within the cone: elsewhere C follows the tool round the
+// pole, since no motion joins the two branches without leaving the path), then the
+// config's preferred tilt sign.
 // Within the singularity cone around the C axis, C holds still and the tilt follows the
 // tool as closely as that allows (the axis error is at most the cone's half-angle).
 //
@@ -43,6 +46,11 @@ public:
   // The joints for the next pose, continuing from current(); current() becomes them.
   [[nodiscard]] Expected<TrackedStep> step(const cl::ClPose& pose);
 
+  // The solution moving continuously from `start` along the great circle of tool axes (the
+  // tip on a line) reaches at `to`, limits ignored: near the pole the nearest solution can
+  // lie on the other branch, which no motion along the path reaches.
+  [[nodiscard]] JointPosition follow(const JointPosition& start, const ToolPose& to) const;
+
   // The solution of `pose` nearest to `near` in rotary motion, limits ignored (for points
   // between two chosen solutions, which lie within the same limits).
   [[nodiscard]] JointPosition nearest(const ToolPose& pose, const JointPosition& near) const;
@@ -54,6 +62,9 @@ private:
     bool in_cone = false;
   };
   [[nodiscard]] Candidates candidates(const ToolPose& pose, const JointPosition& near) const;
+  // The solution continuous motion from current() reaches: `free` (the nearest) unless that
+  // flips the tilt through a pole the path does not pass within the cone.
+  [[nodiscard]] JointPosition continuous(const ToolPose& target, const JointPosition& free) const;
   [[nodiscard]] ToolPose cone_pose(const ToolPose& pose, const JointPosition& near) const;
   [[nodiscard]] bool within_limits(const JointPosition& j) const;
   [[nodiscard]] double rotary_distance(const JointPosition& a, const JointPosition& b) const;
