@@ -1,6 +1,7 @@
 #pragma once
 // The benchmarks' synthetic part: an n x n grid cage `spacing` mm apart whose heights follow
-// gentle waves of `amplitude` mm, as OBJ text.
+// gentle waves of `amplitude` mm, as OBJ text; its corner at the origin, or its middle when
+// `centred` (for a machine whose travel is centred on zero).
 
 #include <cmath>
 #include <sstream>
@@ -8,12 +9,13 @@
 
 namespace subfeed::bench {
 
-inline std::string wavy_grid_obj(int n, double spacing, double amplitude) {
+inline std::string wavy_grid_obj(int n, double spacing, double amplitude, bool centred = false) {
   std::ostringstream obj;
   obj.precision(10);
+  const double shift = centred ? -0.5 * spacing * (n - 1) : 0.0;
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      obj << "v " << spacing * i << ' ' << spacing * j << ' '
+      obj << "v " << shift + spacing * i << ' ' << shift + spacing * j << ' '
           << amplitude * std::sin(0.3 * i) * std::cos(0.2 * j) << '\n';
     }
   }

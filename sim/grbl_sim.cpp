@@ -1,6 +1,7 @@
 #include "sim/grbl_sim.hpp"
 
 #include "sim/delivery_hash.hpp"
+#include "sim/execution_log.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -69,7 +70,10 @@ public:
       settings_[key] = value;
     }
     if (!options_.executed_log.empty()) {
-      log_.open(options_.executed_log, std::ios::app);
+      log_ = std::make_unique<ExecutionLog>(options_.executed_log);
+    }
+    if (options_.machine_state && options_.machine_state->stored()) {
+      planner_.set_position(*options_.machine_state->stored());
     }
     alarm_locked_ = options_.alarm_on_boot;
   }
@@ -262,7 +266,13 @@ private:
   void tick(double seconds) {
     const double scale = feed_override_ / 100.0;
     const std::lock_guard lock(mutex_);
-    planner_.advance(seconds * scale, hold_complete());
+    const auto finished = planner_.advance(seconds * scale, hold_complete());
+    if (log_) {
+      log_->finished(finished);
+    }
+    if (options_.machine_state) {
+      options_.machine_state->save(planner_.position());
+    }
     const auto& alarm_after = options_.faults.alarm_after_s;
     if (alarm_after && first_program_line_at_ && !alarm_fired_ &&
         Clock::now() - *first_program_line_at_ >= std::chrono::duration<double>(*alarm_after)) {
@@ -271,8 +281,15 @@ private:
     }
   }
 
-  void raise_alarm(int code) {
+  void drop_queue() {
     planner_.clear();
+    if (log_) {
+      log_->dropped();
+    }
+  }
+
+  void raise_alarm(int code) {
+    drop_queue();
     rx_.clear();
     holding_ = false;
     alarm_locked_ = true;
@@ -284,7 +301,7 @@ private:
 
   void power_up() {
     rx_.clear();
-    planner_.clear();
+    drop_queue();
     interpreter_.reset();
     holding_ = false;
     check_mode_ = false;
@@ -417,21 +434,21 @@ private:
     } else if (result.dwell_s > 0.0) {
       planner_.push_dwell(result.dwell_s);
     }
-    record_executed(line);
+    record_executed(line, result.move.present || result.dwell_s > 0.0);
     if (f.lose_ack_on_line && number == *f.lose_ack_on_line) {
       return;
     }
     reply_ok();
   }
 
-  void record_executed(const std::string& line) {
+  void record_executed(const std::string& line, bool queued_move) {
     ++stats_.executed_count;
     stats_.executed_hash = delivery_hash(stats_.executed_hash, line);
     if (options_.record_executed) {
       stats_.executed.push_back(line);
     }
-    if (log_.is_open()) {
-      log_ << line << '\n' << std::flush;
+    if (log_) {
+      log_->accepted(line, queued_move);
     }
   }
 
@@ -636,7 +653,7 @@ private:
   Clock::time_point last_flush_ = Clock::now();
   std::map<int, std::string> settings_;
   std::mt19937 rng_;
-  std::ofstream log_;
+  std::unique_ptr<ExecutionLog> log_;
   mutable std::mutex mutex_;
   GrblSimStats stats_;
 

@@ -23,6 +23,7 @@ struct GrblCommand {
   double alarm_after_s = 0.0;
   long ack_delay_ms = 0;
   long boot_ms = 50;
+  std::string machine_state;
 };
 
 void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
@@ -42,7 +43,12 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
   cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
-  cmd.add_option("--log", c.sim.executed_log, "Append every executed line to FILE")
+  cmd.add_option("--log", c.sim.executed_log,
+                 "Append every line to FILE once carried out (a move once it has ended)")
+      ->type_name("FILE");
+  cmd.add_option("--machine-state", c.machine_state,
+                 "Keep the axes' position in FILE across controller restarts (absolute "
+                 "encoders, or a machine homed again): read at start, written as it moves")
       ->type_name("FILE");
   cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error");
   cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")
@@ -81,6 +87,14 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   c.sim.boot_time = std::chrono::milliseconds(c.boot_ms);
   if (c.alarm_after_s > 0.0) {
     c.sim.faults.alarm_after_s = c.alarm_after_s;
+  }
+  if (!c.machine_state.empty()) {
+    auto state = MachineStateFile::open(c.machine_state);
+    if (!state) {
+      std::cerr << "subfeed-sim: error: " << state.error().describe() << std::endl;
+      return subfeed::exit_code(state.error().code);
+    }
+    c.sim.machine_state = std::make_shared<MachineStateFile>(std::move(*state));
   }
   std::unique_ptr<ByteChannel> channel;
   if (c.tcp.empty()) {

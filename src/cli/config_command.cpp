@@ -36,8 +36,8 @@ void describe(const post::MachineConfig& m, Logger& log) {
     const auto& g = *m.rotary;
     const char tilt = post::axis_letters[post::tilt_axis(m.kinematics)];
     if (m.kinematics == post::KinematicsType::xyzac_head) {
-      log.info(fmt::format("  pivot length {} mm, tool length {} mm", g.pivot_length,
-                           g.tool_length));
+      log.info(
+          fmt::format("  pivot length {} mm, tool length {} mm", g.pivot_length, g.tool_length));
     } else {
       log.info(fmt::format("  pivot ({}, {}, {}) mm, offsets x {} y {} z {} mm, tool length {} mm",
                            g.pivot[0], g.pivot[1], g.pivot[2], g.x_offset, g.y_offset, g.z_offset,

@@ -1,6 +1,7 @@
 #include "job_pipeline.hpp"
 
 #include "base/atomic_output_file.hpp"
+#include "cl/cl_reader.hpp"
 #include "cl/cl_writer.hpp"
 #include "motion_time.hpp"
 #include "post/post_processor.hpp"
@@ -74,9 +75,30 @@ void JobPipeline::detach() {
   lines_.close();
 }
 
+// Counts the pose toward the progress figures and passes it to the post.
+Expected<void> JobPipeline::hand_over(const cl::ClPose& pose, std::optional<cl::ClPose>& last,
+                                      double& cut_mm) {
+  if (pose.kind == cl::MoveKind::feed && last) {
+    cut_mm += distance(*last, pose);
+    cut_planned_ = cut_mm;
+  }
+  last = pose;
+  if (pose.kind == cl::MoveKind::plunge) {
+    ++passes_;
+  }
+  if (!poses_.push(pose)) {
+    return std::unexpected(stopped_reading());
+  }
+  return {};
+}
+
 Expected<void> JobPipeline::plan_all() {
+  if (!spec_.plan) {
+    return read_all();
+  }
+  const auto& input = *spec_.plan;
   SUBFEED_TRY_ASSIGN(auto planner,
-                     geometry::ToolpathPlanner::prepare(spec_.cage, spec_.surface, spec_.plan));
+                     geometry::ToolpathPlanner::prepare(input.cage, input.surface, input.options));
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, spec_.header));
   std::optional<cl::ClPose> last;
   double cut_mm = 0.0;
@@ -88,22 +110,34 @@ Expected<void> JobPipeline::plan_all() {
       [&](const cl::ClPose& pose) -> Expected<void> {
         cl::ClPose numbered = pose;
         numbered.line = writer.write(pose);
-        if (pose.kind == cl::MoveKind::feed && last) {
-          cut_mm += distance(*last, pose);
-          cut_planned_ = cut_mm;
-        }
-        last = pose;
-        if (pose.kind == cl::MoveKind::plunge) {
-          ++passes_;
-        }
-        if (!poses_.push(numbered)) {
-          return std::unexpected(stopped_reading());
-        }
-        return {};
+        return hand_over(numbered, last, cut_mm);
       },
       on_plane));
   SUBFEED_TRY(writer.finish());
   totals_.plan = planner.summary();
+  return {};
+}
+
+// Existing CL data: the share of the file read stands in for the planes planned.
+Expected<void> JobPipeline::read_all() {
+  SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(spec_.files.cl));
+  std::error_code failed;
+  planes_ = static_cast<long>(std::filesystem::file_size(spec_.files.cl, failed));
+  std::optional<cl::ClPose> last;
+  double cut_mm = 0.0;
+  long poses = 0;
+  while (true) {
+    SUBFEED_TRY_ASSIGN(const auto pose, reader.next());
+    if (!pose) {
+      break;
+    }
+    SUBFEED_TRY(hand_over(*pose, last, cut_mm));
+    if (++poses % 1024 == 0) {
+      plane_ = static_cast<long>(reader.offset());
+    }
+  }
+  totals_.plan.passes = passes_;
+  totals_.plan.points = poses;
   return {};
 }
 
@@ -150,6 +184,11 @@ Expected<void> JobPipeline::post_all() {
     return writer.write(block);
   });
   const auto run = [&]() -> Expected<void> {
+    if (spec_.post.look_ahead && !spec_.plan) {
+      // The CL data exists: read it once to choose the start, as `post` does.
+      SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(spec_.files.cl));
+      SUBFEED_TRY(post.choose_start(reader));
+    }
     SUBFEED_TRY(writer.begin());
     std::optional<cl::ClPose> last;
     while (auto item = poses_.pop()) {

@@ -1,9 +1,9 @@
 #pragma once
 // One job from cage to program text, lazily: a planning thread yields CL poses pass by pass
-// (and writes the .cl), a post thread turns them into program lines (and writes the .nc and
-// its .map), and the lines go out through a bounded queue to whoever streams them. Each
-// stage waits when the next one is full, so memory does not grow with the job's length and
-// the program's first lines (modes, spindle) are ready before planning has finished.
+// (and writes the .cl) or reads them from existing CL data, a post thread turns them into program
+// lines (and writes the .nc and its .map), and the lines go out through a bounded queue to whoever
+// streams them. Each stage waits when the next one is full, so memory does not grow with the job's
+// length and the program's first lines (modes, spindle) are ready before planning has finished.
 //
 // If the stream stops early (a fault, a stop), detach() lets both threads finish the files
 // without a reader, so that a resume has the whole program; files appear only complete.
@@ -21,6 +21,7 @@
 #include <deque>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 namespace subfeed::cli {
@@ -29,10 +30,15 @@ struct JobFiles {
   std::filesystem::path cl, nc; // the map goes beside the .nc (post::map_path_for)
 };
 
-struct JobSpec {
+// What the planner needs; a job without it reads its CL data from JobFiles::cl instead.
+struct PlanInput {
   geometry::Cage cage;
   geometry::LimitSurface surface;
-  geometry::PlanOptions plan;
+  geometry::PlanOptions options;
+};
+
+struct JobSpec {
+  std::optional<PlanInput> plan; // empty: the job's CL data exists (APT from another CAM)
   post::MachineConfig machine;
   post::PostFileOptions post;
   cl::ClHeader header;
@@ -84,6 +90,9 @@ private:
     double cut_mm, minutes;
   };
   [[nodiscard]] Expected<void> plan_all();
+  [[nodiscard]] Expected<void> read_all();
+  [[nodiscard]] Expected<void> hand_over(const cl::ClPose& pose, std::optional<cl::ClPose>& last,
+                                         double& cut_mm);
   [[nodiscard]] Expected<void> post_all();
   void put_line(std::string_view text, double cut_mm, double minutes);
 

@@ -49,6 +49,7 @@ void JobReporter::line_error(const drivers::LineError& error) {
 
 void JobReporter::finished(const drivers::StreamSummary& summary, std::optional<int> baud,
                            int bits_per_character) {
+  streamed_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   end_line();
   inner_.finished(summary, baud, bits_per_character);
 }

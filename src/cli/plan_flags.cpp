@@ -55,9 +55,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
   return options;
 }
 
-void add_plan_flags(CLI::App& cmd, PlanFlags& o) {
-  cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required();
-  cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required();
+void add_plan_flags(CLI::App& cmd, PlanFlags& o, bool required) {
+  cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required(required);
+  cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required(required);
   cmd.add_option("--direction", o.direction, "Feed direction: x, y or degrees from X");
   cmd.add_flag("--baseline", o.baseline, "Constant-interval iso-planar passes for comparison");
   cmd.add_option("--axis-radius", o.axis_radius,

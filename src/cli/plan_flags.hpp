@@ -29,7 +29,8 @@ struct PlanFlags {
   int refine = 60;
 };
 
-void add_plan_flags(CLI::App& cmd, PlanFlags& flags);
+// `required`: --tool and --scallop must be given (run checks them itself: CL input has none).
+void add_plan_flags(CLI::App& cmd, PlanFlags& flags, bool required = true);
 // Checks what CLI11 cannot (the scallop against the tool) and fills the planner's options.
 [[nodiscard]] Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& flags);
 

@@ -30,10 +30,12 @@
 #include "post/kinematics.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <unistd.h>
 
 namespace subfeed::cli {
@@ -77,13 +79,20 @@ void apply_axis_words(std::string_view line, Joints& joints) {
   }
 }
 
-struct ProgramState {
-  long lines = 0;
-  std::vector<std::pair<long, Joints>> window; // block ends of the motion lines searched
-  Joints start_joints{};                       // at the end of the line before the window
+struct Move {
+  long line;
+  Joints start, end;
 };
 
-Expected<ProgramState> read_positions(const std::string& program, long lo, long hi) {
+struct ProgramState {
+  long lines = 0;
+  std::vector<Move> moves;                  // the motion lines searched for the machine
+  std::map<long, Joints> joints_after_line; // for those lines, the line before, and `extra`
+};
+
+// The program's joints line by line; lines lo..hi are searched, `extra` is a line whose end
+// position is wanted too (--from).
+Expected<ProgramState> read_positions(const std::string& program, long lo, long hi, long extra) {
   std::ifstream in(program);
   if (!in) {
     return fail(ErrorCode::bad_input, "cannot read the program", {program, 0, {}});
@@ -93,28 +102,68 @@ Expected<ProgramState> read_positions(const std::string& program, long lo, long 
   std::string text;
   while (std::getline(in, text)) {
     ++s.lines;
+    const Joints before = joints;
     apply_axis_words(text, joints);
-    if (s.lines == lo - 1) {
-      s.start_joints = joints;
+    if ((s.lines >= lo - 1 && s.lines <= hi) || s.lines == extra) {
+      s.joints_after_line[s.lines] = joints;
     }
     const bool moves = text.find_first_of("XYZABC") != std::string::npos;
     if (s.lines >= lo && s.lines <= hi && moves) {
-      s.window.emplace_back(s.lines, joints);
+      s.moves.push_back({s.lines, before, joints});
     }
+  }
+  if (extra > 0 && !s.joints_after_line.contains(extra)) {
+    s.joints_after_line[extra] = joints; // --from past the end: nothing is left to run
+  }
+  if (!s.joints_after_line.contains(lo - 1)) {
+    s.joints_after_line[lo - 1] = Joints{};
   }
   return s;
 }
 
-// Within the rounding of both the program's words and the status report's (GRBL reports
-// three decimals).
-bool same_position(const Joints& a, const std::vector<double>& mpos, int decimals) {
+// Where along the move from `m.start` to `m.end` (joints interpolated linearly, as the
+// control does) the reported position lies, 0..1; none when it is off the move by more than
+// the rounding of the program's words and the status report's (GRBL reports 3 decimals).
+std::optional<double> place_on_move(const Move& m, const std::vector<double>& mpos, int decimals) {
   const double tolerance = 0.75 * std::pow(10.0, -std::min(decimals, 3));
-  for (std::size_t i = 0; i < std::min<std::size_t>(6, mpos.size()); ++i) {
-    if (std::abs(a[i] - mpos[i]) > tolerance) {
-      return false;
+  const std::size_t n = std::min<std::size_t>(6, mpos.size());
+  double along = 0.0, length2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    along += (mpos[i] - m.start[i]) * (m.end[i] - m.start[i]);
+    length2 += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
+  }
+  const double t = length2 > 0.0 ? std::clamp(along / length2, 0.0, 1.0) : 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(m.start[i] + t * (m.end[i] - m.start[i]) - mpos[i]) > tolerance) {
+      return std::nullopt;
     }
   }
-  return true;
+  return t;
+}
+
+struct RestartPoint {
+  long after = 0;         // continue with the line after this one
+  bool mid_block = false; // the machine stopped inside the next move
+};
+
+// The latest line the machine can be at: at the end of a move (continue after it) or inside
+// one (run it again from its start: the part of it already cut is cut again, nothing is
+// skipped). A controller that ran everything it received stands at the last line sent.
+std::optional<RestartPoint> find_machine(const ProgramState& p, const std::vector<double>& mpos,
+                                         int decimals) {
+  std::optional<RestartPoint> found;
+  for (const auto& m : p.moves) {
+    const auto t = place_on_move(m, mpos, decimals);
+    if (!t) {
+      continue;
+    }
+    const bool at_end = *t >= 1.0 || place_on_move({m.line, m.end, m.end}, mpos, decimals);
+    const RestartPoint here{at_end ? m.line : m.line - 1, !at_end};
+    if (!found || here.after >= found->after) {
+      found = here;
+    }
+  }
+  return found;
 }
 
 // What the controller says once connected and idle: state and machine position.
@@ -342,33 +391,26 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
                 {o.journal, 0, {}});
   }
   const long lo = std::max(1L, std::min(j.last_acked, j.last_sent) - planner_reach);
-  SUBFEED_TRY_ASSIGN(const auto program, read_positions(j.program, lo, j.last_sent + 1));
+  SUBFEED_TRY_ASSIGN(const auto program,
+                     read_positions(j.program, lo, j.last_sent, o.from > 0 ? o.from - 1 : 0));
   long after = 0;
   std::string why;
   if (o.from > 0) {
     after = o.from - 1;
     why = "as asked (--from)";
+  } else if (const auto at =
+                 find_machine(program, status.machine_position, machine.controller.decimals)) {
+    after = at->after;
+    why = at->mid_block ? "the machine stopped inside the next line's move: it runs again "
+                          "from its start"
+                        : "the machine stands at the end of that line";
   } else {
-    for (const auto& [line, joints] : program.window) {
-      if (line <= j.last_sent &&
-          same_position(joints, status.machine_position, machine.controller.decimals)) {
-        after = line;
-      }
-    }
-    why = after > 0 ? "the machine stands at the end of that line"
-                    : fmt::format("the machine is on no block end near the last acknowledged "
-                                  "line {}: up to {} lines may be cut again",
-                                  j.last_acked, j.last_sent - lo + 1);
-    if (after == 0) {
-      after = lo - 1;
-    }
+    after = lo - 1;
+    why = fmt::format("the machine is on no move near the last acknowledged line {}: up to {} "
+                      "lines may be cut again",
+                      j.last_acked, j.last_sent - lo + 1);
   }
-  Joints target = program.start_joints;
-  for (const auto& [line, joints] : program.window) {
-    if (line == after) {
-      target = joints;
-    }
-  }
+  const Joints target = program.joints_after_line.at(after);
   Joints here{};
   for (std::size_t i = 0; i < std::min<std::size_t>(6, status.machine_position.size()); ++i) {
     here[i] = status.machine_position[i];

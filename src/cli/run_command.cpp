@@ -19,6 +19,7 @@
 #include "geometry/obj_reader.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <fmt/format.h>
 
 namespace subfeed::cli {
@@ -52,7 +53,16 @@ Expected<drivers::StreamSummary> stream(const RunOptions& o, int sim_baud,
 }
 
 void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter& reporter,
-                   Logger& log) {
+                   bool json, Logger& log) {
+  if (json) {
+    std::printf("{\"event\":\"job\",\"passes\":%ld,\"cl_points\":%ld,\"lines\":%ld,"
+                "\"cut_mm\":%.3f,\"machine_min\":%.3f,\"first_block_s\":%.4f,"
+                "\"streamed_s\":%.4f}\n",
+                t.plan.passes, t.plan.points, t.lines, t.cut_mm, t.machine_min,
+                reporter.first_block_s().value_or(-1.0), reporter.streamed_s());
+    std::fflush(stdout);
+    return;
+  }
   log.info(fmt::format("{}: {} passes, cutting {:.1f} mm; {}: {} lines, modelled machine time "
                        "{:.1f} min",
                        files.cl.string(), t.plan.passes, t.cut_mm, files.nc.string(), t.lines,
@@ -105,7 +115,7 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
   }
   SUBFEED_TRY_ASSIGN(const auto totals, job.finish());
   reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));
-  report_totals(totals, files, reporter, log);
+  report_totals(totals, files, reporter, o.json, log);
   if (o.sim) {
     SUBFEED_TRY(verify_dry_run(link, {files.cl, files.nc}, machine, tolerance, log));
   }
@@ -118,9 +128,10 @@ void add_run_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand(
       "run", "Plan, post and drip-feed one job, lazily: cutting starts while planning goes on");
-  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+  cmd->add_option("cage", o->cage,
+                  "Control cage (Wavefront OBJ, mm) to plan, or CL data (.cl) to post as it is")
       ->required()
-      ->type_name("CAGE.obj");
+      ->type_name("CAGE.obj|PART.cl");
   add_run_flags(*cmd, *o);
   auto* link = cmd->add_option_group("link", "Where the controller is (exactly one)");
   link->add_option("--port", o->port, "Serial port (any tty path, ptys included)")

@@ -1,10 +1,13 @@
 #include "run_job.hpp"
 
+#include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
 #include "post/post_file.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <fmt/format.h>
 #include <map>
@@ -47,7 +50,7 @@ std::string number(double v) {
 } // namespace
 
 void add_run_flags(CLI::App& cmd, RunOptions& o) {
-  add_plan_flags(cmd, o.plan);
+  add_plan_flags(cmd, o.plan, false);
   cmd.add_option("--machine", o.machine, "Machine config: kinematics, limits, controller")
       ->required()
       ->type_name("M.toml");
@@ -60,6 +63,13 @@ void add_run_flags(CLI::App& cmd, RunOptions& o) {
       ->check(CLI::Range(0.0, 200000.0));
 }
 
+bool reads_cl(const RunOptions& o) {
+  auto extension = std::filesystem::path(o.cage).extension().string();
+  std::ranges::transform(extension, extension.begin(),
+                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".cl";
+}
+
 JobFiles job_files(const RunOptions& o) {
   const std::filesystem::path base = o.output.empty()
                                          ? std::filesystem::path(o.cage).replace_extension()
@@ -67,7 +77,7 @@ JobFiles job_files(const RunOptions& o) {
   auto cl = base, nc = base;
   cl += ".cl";
   nc += ".nc";
-  return {cl, nc};
+  return {reads_cl(o) ? std::filesystem::path(o.cage) : cl, nc};
 }
 
 std::filesystem::path journal_path(const RunOptions& o) {
@@ -78,8 +88,39 @@ std::filesystem::path journal_path(const RunOptions& o) {
   return path.replace_extension(".journal");
 }
 
+namespace {
+
+post::PostFileOptions post_options_for(const post::MachineConfig& machine, const RunOptions& o) {
+  post::PostFileOptions post;
+  post.program = post::program_options_for(machine);
+  if (o.spindle_rpm > 0.0) {
+    post.program.spindle_rpm = o.spindle_rpm;
+  }
+  return post;
+}
+
+Expected<JobSpec> cl_job_spec(const RunOptions& o, post::MachineConfig machine) {
+  if (!o.plan.tool.empty() || o.plan.scallop != 0.0) {
+    return fail(ErrorCode::usage, "plans come from a cage: CL data already has its path and cutter",
+                {{}, 0, o.plan.tool.empty() ? "--scallop" : "--tool"});
+  }
+  SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(o.cage)); // the header, checked now
+  auto post = post_options_for(machine, o);
+  post.look_ahead = true; // the whole path exists: choose the start as `post` does
+  return JobSpec{std::nullopt, std::move(machine), post, reader.header(), job_files(o)};
+}
+
+} // namespace
+
 Expected<JobSpec> job_spec(const RunOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(auto machine, post::load_machine_config(o.machine));
+  if (reads_cl(o)) {
+    return cl_job_spec(o, std::move(machine));
+  }
+  if (o.plan.tool.empty() || o.plan.scallop == 0.0) {
+    return fail(ErrorCode::usage, "planning from a cage needs --tool and --scallop",
+                {{}, 0, o.plan.tool.empty() ? "--tool" : "--scallop"});
+  }
   SUBFEED_TRY_ASSIGN(auto plan, plan_options_from(o.plan));
   if (machine.kinematics == post::KinematicsType::xyz && !plan.fixed_axis) {
     plan.fixed_axis = true; // a three-axis machine holds the tool vertical
@@ -87,17 +128,13 @@ Expected<JobSpec> job_spec(const RunOptions& o, Logger& log) {
   }
   SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(o.cage));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, o.plan.level));
-  post::PostFileOptions post;
-  post.program = post::program_options_for(machine);
+  auto post = post_options_for(machine, o);
   post.look_ahead = false; // the poses do not exist yet: the start follows the preferred tilt
-  if (o.spindle_rpm > 0.0) {
-    post.program.spindle_rpm = o.spindle_rpm;
-  }
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * plan.ball_radius, plan.ball_radius},
                       !plan.fixed_axis};
-  return JobSpec{std::move(cage), std::move(surface), plan, std::move(machine), post,
-                 header,          job_files(o)};
+  return JobSpec{PlanInput{std::move(cage), std::move(surface), plan}, std::move(machine), post,
+                 header, job_files(o)};
 }
 
 std::string encode_job(const RunOptions& o) {

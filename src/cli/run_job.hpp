@@ -19,7 +19,7 @@ class App;
 namespace subfeed::cli {
 
 struct RunOptions {
-  std::string cage;
+  std::string cage; // or CL data (.cl): then nothing is planned
   PlanFlags plan;
   std::string machine;
   std::string output;  // BASE: BASE.cl, BASE.nc, BASE.journal; default the cage without .obj
@@ -35,6 +35,8 @@ struct RunOptions {
 // The job's flags (planning, machine, output, spindle); not the link's.
 void add_run_flags(CLI::App& cmd, RunOptions& o);
 
+// Whether the job's input is CL data (PART.cl, from `plan` or another CAM) rather than a cage.
+[[nodiscard]] bool reads_cl(const RunOptions& o);
 [[nodiscard]] JobFiles job_files(const RunOptions& o);
 [[nodiscard]] std::filesystem::path journal_path(const RunOptions& o);
 // Loads the machine and the cage, checks the flags and builds the whole job's definition.

@@ -2,6 +2,7 @@
 
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -44,11 +45,7 @@ TEST_CASE("check fails with exit 2 when the program leaves the CL path") {
   const auto config = source_dir + "/configs/grbl-router-3axis.toml";
   const auto cl = source_dir + "/examples/bowl-raster.cl";
   REQUIRE(run_process({bin, "post", cl, "--machine", config, "-o", nc}).exit_code == 0);
-  std::ifstream in(nc);
-  std::stringstream text;
-  text << in.rdbuf();
-  in.close();
-  std::string program = text.str();
+  std::string program = subfeed::testing::read_text(nc);
   const auto at = program.find("\nX-15.");
   REQUIRE(at != std::string::npos);
   program.replace(at, 6, "\nX-15.1");

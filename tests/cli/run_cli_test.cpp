@@ -4,6 +4,7 @@
 #include "drivers/gcode_line.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <csignal>
@@ -13,6 +14,8 @@
 #include <thread>
 
 using subfeed::testing::BackgroundProcess;
+using subfeed::testing::lines_of;
+using subfeed::testing::read_text;
 using subfeed::testing::run_process;
 using namespace std::chrono_literals;
 
@@ -24,22 +27,6 @@ const std::string source_dir = SUBFEED_SOURCE_DIR;
 const std::string seat = source_dir + "/examples/seat.obj";
 const std::string grblhal = source_dir + "/configs/grblhal-xyzac-trt.toml";
 const std::string fanuc = source_dir + "/configs/fanuc-xyzac-trt.toml";
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> lines_of(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) {
-    lines.push_back(line);
-  }
-  return lines;
-}
 
 // Waits until a growing file has stopped growing (the machine has run what it holds).
 void wait_until_still(const std::string& path) {
@@ -78,7 +65,7 @@ TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted,
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK(std::filesystem::exists(base + ext));
   }
-  const auto journal = read_file(base + ".journal");
+  const auto journal = read_text(base + ".journal");
   CHECK(journal.find(" event job cage=") != std::string::npos);
   CHECK(journal.find(" end done\n") != std::string::npos);
 }
@@ -97,14 +84,51 @@ TEST_CASE("run --sim on the seat for a Fanuc-style A/C trunnion by DNC drip feed
   CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
 }
 
+namespace {
+
+// The program's lines as the controller logs them (stripped, upper case).
+std::vector<std::string> program_lines(const std::string& nc) {
+  std::vector<std::string> program;
+  for (const auto& line : lines_of(nc)) {
+    program.push_back(subfeed::drivers::prepare_line(line, {256, false}, {}).value().text);
+  }
+  return program;
+}
+
+// Checks that `executed` holds every program line exactly once, in order, and otherwise
+// only restart blocks (G words: modes and the approach), at most `restarts` of them.
+void require_exactly_once(const std::vector<std::string>& program,
+                          const std::vector<std::string>& executed, int restarts) {
+  std::size_t next = 0;
+  int restart_blocks = 0;
+  for (const auto& line : executed) {
+    if (next < program.size() && line == program[next]) {
+      ++next;
+    } else {
+      INFO(line);
+      CHECK(line.front() == 'G');
+      ++restart_blocks;
+    }
+  }
+  CHECK(next == program.size());
+  CHECK(restart_blocks > 0);
+  CHECK(restart_blocks <= restarts);
+}
+
+std::vector<std::string> sim_args(const std::string& log) {
+  return {sim_bin, "grbl",      "--grblhal", "--axes",       "6",   "--rx",
+          "1024",  "--planner", "100",       "--line-limit", "256", "--speed",
+          "3",     "--baud",    "0",         "--log",        log};
+}
+
+} // namespace
+
 TEST_CASE("subfeed killed mid-job: resume rebuilds the program and runs every line exactly once",
           "[pty]") {
   subfeed::testing::TempDir dir;
   const std::string base = (dir.path() / "seat").string();
   const std::string log = (dir.path() / "executed.log").string();
-  BackgroundProcess sim({sim_bin, "grbl", "--grblhal", "--axes", "6", "--rx", "1024", "--planner",
-                         "100", "--line-limit", "256", "--speed", "3", "--baud", "0", "--log",
-                         log});
+  BackgroundProcess sim(sim_args(log));
   const std::string port = sim.first_line();
   REQUIRE(port.starts_with("/dev/pts/"));
   auto argv = job(base, grblhal);
@@ -119,38 +143,30 @@ TEST_CASE("subfeed killed mid-job: resume rebuilds the program and runs every li
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
   CHECK(resumed.out.find("(the machine stands at the end of that line)") != std::string::npos);
-  // The executed lines are the program's, in order, each once; the only others are the
-  // restart blocks (modes and the approach), all G words.
-  std::vector<std::string> program;
-  for (const auto& line : lines_of(base + ".nc")) {
-    program.push_back(subfeed::drivers::prepare_line(line, {256, false}, {}).value().text);
-  }
-  std::size_t next = 0;
-  int restart_blocks = 0;
-  for (const auto& line : lines_of(log)) {
-    if (next < program.size() && line == program[next]) {
-      ++next;
-    } else {
-      CHECK(line.front() == 'G');
-      ++restart_blocks;
-    }
-  }
-  CHECK(next == program.size());
-  CHECK(restart_blocks > 0);
-  CHECK(restart_blocks <= 16);
+  require_exactly_once(program_lines(base + ".nc"), lines_of(log), 16);
 }
 
-TEST_CASE("a simulated controller killed mid-job: resume on a new one skips no block", "[pty]") {
+TEST_CASE("a simulated controller killed mid-job: resume on a new one runs every block once",
+          "[pty]") {
+  // The machine keeps its position (absolute encoders, or homed again): the new controller
+  // reports where the old one stopped, mid-move, and the resume runs that move again from
+  // its start. Without it the controller's position is lost and the resume starts early
+  // enough that nothing is skipped.
+  const bool keeps_position = GENERATE(true, false);
+  CAPTURE(keeps_position);
   subfeed::testing::TempDir dir;
   const std::string base = (dir.path() / "seat").string();
   const std::string first_log = (dir.path() / "first.log").string();
   const std::string second_log = (dir.path() / "second.log").string();
-  const std::vector<std::string> sim_args{
-      sim_bin, "grbl",         "--grblhal", "--axes",  "6", "--rx",   "1024", "--planner",
-      "100",   "--line-limit", "256",       "--speed", "3", "--baud", "0",    "--log"};
-  auto first_args = sim_args;
-  first_args.push_back(first_log);
-  BackgroundProcess first(first_args);
+  const std::string state = (dir.path() / "machine.state").string();
+  const auto controller = [&](const std::string& log) {
+    auto args = sim_args(log);
+    if (keeps_position) {
+      args.insert(args.end(), {"--machine-state", state});
+    }
+    return args;
+  };
+  BackgroundProcess first(controller(first_log));
   const std::string port = first.first_line();
   auto argv = job(base, grblhal);
   argv.insert(argv.end(), {"--port", port});
@@ -161,22 +177,23 @@ TEST_CASE("a simulated controller killed mid-job: resume on a new one skips no b
   CHECK(failed.exit_code == 3);
   CHECK(failed.err.find("subfeed resume") != std::string::npos);
   REQUIRE(std::filesystem::exists(base + ".nc")); // finished for the resume
-  auto second_args = sim_args;
-  second_args.push_back(second_log);
-  BackgroundProcess second(second_args);
+  BackgroundProcess second(controller(second_log));
   const std::string port2 = second.first_line();
   const auto resumed = run_process({bin, "resume", base + ".journal", "--port", port2, "--yes"});
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
-  CHECK(resumed.out.find("may be cut again") != std::string::npos);
-  // Every program line ran on one controller or the other, in order.
-  std::vector<std::string> program;
-  for (const auto& line : lines_of(base + ".nc")) {
-    program.push_back(subfeed::drivers::prepare_line(line, {256, false}, {}).value().text);
-  }
+  const auto program = program_lines(base + ".nc");
   const auto ran_first = lines_of(first_log);
   REQUIRE(ran_first.size() < program.size());
+  auto ran = ran_first;
   const auto ran_second = lines_of(second_log);
+  ran.insert(ran.end(), ran_second.begin(), ran_second.end());
+  if (keeps_position) {
+    CHECK(resumed.out.find("may be cut again") == std::string::npos);
+    require_exactly_once(program, ran, 16);
+    return;
+  }
+  CHECK(resumed.out.find("may be cut again") != std::string::npos);
   // The program's last lines ran on the second controller; where they start is where it
   // resumed, and that must be no later than where the first one stopped.
   std::size_t matched = 0;
@@ -184,8 +201,7 @@ TEST_CASE("a simulated controller killed mid-job: resume on a new one skips no b
          ran_second[ran_second.size() - 1 - matched] == program[program.size() - 1 - matched]) {
     ++matched;
   }
-  const std::size_t resumed_at = program.size() - matched;
-  CHECK(resumed_at <= ran_first.size());
+  CHECK(program.size() - matched <= ran_first.size());
 }
 
 TEST_CASE("Ctrl-C during run stops the machine without an alarm and finishes the files", "[pty]") {
@@ -199,7 +215,7 @@ TEST_CASE("Ctrl-C during run stops the machine without an alarm and finishes the
   const auto r = sender.wait();
   CHECK(r.exit_code == 4);
   CHECK(r.err.find("stopped by the user") != std::string::npos);
-  const auto journal = read_file(base + ".journal");
+  const auto journal = read_text(base + ".journal");
   CHECK(journal.find("alarm") == std::string::npos);
   CHECK(journal.find(" event hold") != std::string::npos);
   CHECK(std::filesystem::exists(base + ".nc"));
@@ -251,5 +267,47 @@ TEST_CASE("resume refuses journals it cannot continue, in one line naming the jo
                           "scallop=zero\n");
     CHECK(r.exit_code == 2);
     CHECK(r.err.find(journal + ": job: job record without a valid 'scallop'") != std::string::npos);
+  }
+}
+
+TEST_CASE("run on existing CL data posts it as `post` does and streams it lazily", "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string cl = source_dir + "/examples/bowl-raster.cl";
+  const std::string router = source_dir + "/configs/grbl-router-3axis.toml";
+  const std::string base = (dir.path() / "bowl").string();
+  const std::string before = read_text(cl);
+  const auto r = run_process({bin, "run", cl, "--machine", router, "--sim", "--sim-speed", "1000",
+                              "--sim-baud", "0", "-o", base, "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"event\":\"job\"") != std::string::npos);
+  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(base + ".cl")); // the input is the job's CL data
+  CHECK(read_text(cl) == before);
+  const std::string posted = (dir.path() / "posted.nc").string();
+  REQUIRE(run_process({bin, "post", cl, "--machine", router, "-o", posted}).exit_code == 0);
+  CHECK(read_text(base + ".nc") == read_text(posted));
+  CHECK(read_text(base + ".nc.map") == read_text(posted + ".map"));
+  CHECK(read_text(base + ".journal").find("event job cage=" + cl) != std::string::npos);
+}
+
+TEST_CASE("run refuses planning flags with CL data and needs them with a cage", "[unit]") {
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "job").string();
+  SECTION("CL data with --tool") {
+    const auto r = run_process({bin, "run", source_dir + "/examples/bowl-raster.cl", "--machine",
+                                grblhal, "--tool", "ball:6", "--sim", "-o", base});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --tool: plans come from a cage: CL data already has its path "
+                   "and cutter\n");
+  }
+  SECTION("a cage without --scallop") {
+    const auto r = run_process(
+        {bin, "run", seat, "--machine", grblhal, "--tool", "ball:6", "--sim", "-o", base});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --scallop: planning from a cage needs --tool and --scallop\n");
+  }
+  for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
+    CHECK_FALSE(std::filesystem::exists(base + ext));
   }
 }

@@ -3,6 +3,7 @@
 #include "sim/pty.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <csignal>
@@ -19,13 +20,6 @@ namespace {
 const std::string bin = SUBFEED_BIN;
 const std::string sim_bin = SUBFEED_SIM_BIN;
 const std::string source_dir = SUBFEED_SOURCE_DIR;
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string moves(int count, int feed) {
   std::string p = "G21 G90 (setup)\nG1 F" + std::to_string(feed) + "\n";
@@ -113,7 +107,7 @@ TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exit
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in "
                    "block)") != std::string::npos);
-  const std::string journal = read_file(job.string() + ".journal");
+  const std::string journal = subfeed::testing::read_text(job.string() + ".journal");
   CHECK(journal.find(" start protocol=grbl program=" + job.string() + " link=" + port + "\n") !=
         std::string::npos);
   CHECK(journal.find(" answered line=39 ok\n") != std::string::npos);
@@ -230,7 +224,7 @@ TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[p
   CHECK(r.exit_code == 3);
   CHECK(r.err.find("the control has held the tape (XOFF) for 500 ms; last block sent: line ") !=
         std::string::npos);
-  const std::string journal = read_file(job.string() + ".journal");
+  const std::string journal = subfeed::testing::read_text(job.string() + ".journal");
   CHECK(journal.find(" start protocol=fanuc ") != std::string::npos);
   CHECK(journal.find(" event xoff\n") != std::string::npos);
   CHECK(journal.find(" end failed ") != std::string::npos);

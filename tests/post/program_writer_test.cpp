@@ -5,6 +5,7 @@
 #include "post/post_file.hpp"
 #include "post/program_writer.hpp"
 #include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <fstream>
@@ -17,13 +18,6 @@ namespace {
 
 const std::string source = SUBFEED_SOURCE_DIR;
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 void compare_golden(const std::string& config, const std::string& golden,
                     const std::function<void(post::PostFileOptions&)>& adjust) {
   auto machine = post::load_machine_config(source + "/configs/" + config);
@@ -34,8 +28,8 @@ void compare_golden(const std::string& config, const std::string& golden,
   TempDir dir;
   const auto out = dir.path() / "out.nc";
   REQUIRE(post::post_file(source + "/tests/post/golden/tilt.cl", *machine, options, out));
-  CHECK(slurp(out) == slurp(source + "/tests/post/golden/" + golden));
-  CHECK(slurp(post::map_path_for(out)) == slurp(source + "/tests/post/golden/" + golden + ".map"));
+  CHECK(subfeed::testing::read_text(out) == subfeed::testing::read_text(source + "/tests/post/golden/" + golden));
+  CHECK(subfeed::testing::read_text(post::map_path_for(out)) == subfeed::testing::read_text(source + "/tests/post/golden/" + golden + ".map"));
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 
 #include "sim/byte_channel.hpp"
 #include "sim/delivery_hash.hpp"
+#include "sim/machine_state_file.hpp"
 #include "sim/motion_planner.hpp"
 #include "sim/serve_thread.hpp"
 
@@ -57,7 +58,10 @@ struct GrblSimOptions {
   // Keep every executed line in stats (tests); off, memory stays flat however long the job:
   // executed_count and executed_hash still prove delivery.
   bool record_executed = false;
-  std::string executed_log; // also append each executed line to this file, if set
+  // Append each line to this file once the machine has carried it out (ExecutionLog).
+  std::string executed_log;
+  // The machine's position outlives the controller: read at start, written as it moves.
+  std::shared_ptr<MachineStateFile> machine_state;
 };
 
 struct GrblSimStats {

@@ -28,6 +28,9 @@ public:
   // The next pose; nullopt once FINI has been read.
   [[nodiscard]] Expected<std::optional<ClPose>> next();
 
+  // Bytes of the file consumed so far (a system call: for progress, now and then).
+  [[nodiscard]] long long offset() { return static_cast<long long>(in_.tellg()); }
+
   // Back to the first pose, for a second pass over the same file.
   [[nodiscard]] Expected<void> rewind();
 
