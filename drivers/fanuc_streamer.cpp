@@ -90,6 +90,10 @@ private:
       for (const auto& b : blocks) {
         SUBFEED_TRY(send_block(b, 0));
       }
+      for (const auto& b : options_.restart_blocks) {
+        SUBFEED_TRY(check_tape_block(b, {program_.name(), 0, "resume"}));
+        SUBFEED_TRY(send_block(b, 0));
+      }
       restored = true;
     }
     if (restored || framing) {

@@ -1,5 +1,7 @@
 #include "sim/fanuc_sim.hpp"
 
+#include "sim/execution_log.hpp"
+
 #include "sim/delivery_hash.hpp"
 
 #include "sim/gcode_interpreter.hpp"
@@ -49,7 +51,14 @@ class FanucSim::Control {
 public:
   Control(std::unique_ptr<ByteChannel> channel, FanucSimOptions options)
       : channel_(std::move(channel)), options_(std::move(options)), interpreter_(6),
-        planner_(options_.look_ahead_blocks, options_.motion), rng_(options_.seed) {}
+        planner_(options_.look_ahead_blocks, options_.motion), rng_(options_.seed) {
+    if (!options_.executed_log.empty()) {
+      log_ = std::make_unique<ExecutionLog>(options_.executed_log);
+    }
+    if (options_.machine_state && options_.machine_state->stored()) {
+      planner_.set_position(*options_.machine_state->stored());
+    }
+  }
 
   [[nodiscard]] std::string address() const { return channel_->address(); }
 
@@ -59,8 +68,15 @@ public:
       pump_input();
       const auto now = Clock::now();
       const std::lock_guard lock(mutex_);
-      planner_.advance(std::chrono::duration<double>(now - last).count(), false);
+      const auto finished =
+          planner_.advance(std::chrono::duration<double>(now - last).count(), false);
       last = now;
+      if (log_) {
+        log_->finished(finished);
+      }
+      if (options_.machine_state) {
+        options_.machine_state->save(planner_.position());
+      }
       execute_blocks();
       release_flow();
       flush_output();
@@ -259,8 +275,12 @@ private:
       stalled_until_ = Clock::now() + std::chrono::milliseconds(pause(rng_));
     }
     const SimLineResult result = interpreter_.execute(interpretable(block), planner_.planned_end());
-    if (result.error == 0 && result.move.present) {
+    const bool moves = result.error == 0 && result.move.present;
+    if (moves) {
       planner_.push(result.move);
+    }
+    if (log_) {
+      log_->accepted(block, moves);
     }
     ++stats_.executed_count;
     stats_.executed_hash = delivery_hash(stats_.executed_hash, block);
@@ -280,6 +300,7 @@ private:
   FanucSimOptions options_;
   GcodeInterpreter interpreter_;
   MotionPlanner planner_;
+  std::unique_ptr<ExecutionLog> log_;
   std::mt19937 rng_;
   mutable std::mutex mutex_;
   FanucSimStats stats_;

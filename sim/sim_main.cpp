@@ -15,6 +15,29 @@ namespace {
 
 using namespace subfeed::sim;
 
+// Opens --machine-state if given; false (having said why) when it cannot be used.
+bool open_machine_state(const std::string& path, std::shared_ptr<MachineStateFile>& state) {
+  if (path.empty()) {
+    return true;
+  }
+  auto file = MachineStateFile::open(path);
+  if (!file) {
+    std::cerr << "subfeed-sim: error: " << file.error().describe() << std::endl;
+    return false;
+  }
+  state = std::make_shared<MachineStateFile>(std::move(*file));
+  return true;
+}
+
+void add_state_options(CLI::App& cmd, std::string& log, std::string& machine_state) {
+  cmd.add_option("--log", log, "Append every line to FILE once carried out (a move once ended)")
+      ->type_name("FILE");
+  cmd.add_option("--machine-state", machine_state,
+                 "Keep the axes' position in FILE across controller restarts (absolute "
+                 "encoders, or a machine homed again): read at start, written as it moves")
+      ->type_name("FILE");
+}
+
 struct GrblCommand {
   GrblSimOptions sim;
   std::string tcp; // host:port; empty for a pty
@@ -43,13 +66,7 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
   cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
-  cmd.add_option("--log", c.sim.executed_log,
-                 "Append every line to FILE once carried out (a move once it has ended)")
-      ->type_name("FILE");
-  cmd.add_option("--machine-state", c.machine_state,
-                 "Keep the axes' position in FILE across controller restarts (absolute "
-                 "encoders, or a machine homed again): read at start, written as it moves")
-      ->type_name("FILE");
+  add_state_options(cmd, c.sim.executed_log, c.machine_state);
   cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error");
   cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")
       ->check(CLI::Range(1, 255));
@@ -88,13 +105,8 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   if (c.alarm_after_s > 0.0) {
     c.sim.faults.alarm_after_s = c.alarm_after_s;
   }
-  if (!c.machine_state.empty()) {
-    auto state = MachineStateFile::open(c.machine_state);
-    if (!state) {
-      std::cerr << "subfeed-sim: error: " << state.error().describe() << std::endl;
-      return subfeed::exit_code(state.error().code);
-    }
-    c.sim.machine_state = std::make_shared<MachineStateFile>(std::move(*state));
+  if (!open_machine_state(c.machine_state, c.sim.machine_state)) {
+    return 2;
   }
   std::unique_ptr<ByteChannel> channel;
   if (c.tcp.empty()) {
@@ -134,6 +146,7 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
 
 struct FanucCommand {
   FanucSimOptions sim;
+  std::string machine_state;
   std::string framing = "7E2";
   long stuck_xoff_at = 0, lose_xon_after = 0, drop_at = 0;
   long max_pause_ms = 0;
@@ -164,6 +177,7 @@ void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
                  "Drain jitter: random stalls of up to MS milliseconds")
       ->type_name("MS");
   cmd.add_option("--seed", c.sim.seed, "Random seed for stalls");
+  add_state_options(cmd, c.sim.executed_log, c.machine_state);
 }
 
 int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
@@ -186,6 +200,9 @@ int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
   c.sim.faults.drop_at_block = positive(c.drop_at);
   c.sim.max_block_pause = std::chrono::milliseconds(c.max_pause_ms);
   c.sim.pause_one_in = 20;
+  if (!open_machine_state(c.machine_state, c.sim.machine_state)) {
+    return 2;
+  }
   auto pty = Pty::open();
   if (!pty) {
     std::cerr << "subfeed-sim: error: " << pty.error().describe() << std::endl;

@@ -93,6 +93,8 @@ namespace {
 post::PostFileOptions post_options_for(const post::MachineConfig& machine, const RunOptions& o) {
   post::PostFileOptions post;
   post.program = post::program_options_for(machine);
+  // A drip-fed job restarts by the block the control shows (resume --block N).
+  post.program.line_numbers = machine.controller.protocol == post::Protocol::fanuc;
   if (o.spindle_rpm > 0.0) {
     post.program.spindle_rpm = o.spindle_rpm;
   }

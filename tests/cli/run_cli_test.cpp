@@ -259,7 +259,8 @@ TEST_CASE("resume refuses journals it cannot continue, in one line naming the jo
     const auto r = resume("0 start protocol=fanuc program=a.nc link=/dev/pts/9\n"
                           "5 sent line=1 bytes=4\n");
     CHECK(r.exit_code == 1);
-    CHECK(r.err.find("DNC jobs report no position") != std::string::npos);
+    CHECK(r.err.find("a DNC control reports no position: give the sequence number") !=
+          std::string::npos);
   }
   SECTION("a damaged job record") {
     const auto r = resume("0 start protocol=grbl program=a.nc link=/dev/pts/9\n"
@@ -310,4 +311,73 @@ TEST_CASE("run refuses planning flags with CL data and needs them with a cage", 
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK_FALSE(std::filesystem::exists(base + ext));
   }
+}
+
+TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows runs every block "
+          "once",
+          "[pty]") {
+  // DNC reports no position: the operator reads the sequence number of the block the control
+  // stopped in (here: the first block the dead control had not finished) and gives it. The
+  // machine keeps its position (absolute encoders); on a trunnion the retract is straight up.
+  subfeed::testing::TempDir dir;
+  const std::string base = (dir.path() / "seat").string();
+  const std::string machine = (dir.path() / "fanuc.toml").string();
+  std::string config = read_text(fanuc);
+  config.replace(config.find("baud = 9600"), 11, "baud = 115200");
+  std::ofstream(machine) << config;
+  const std::string first_log = (dir.path() / "first.log").string();
+  const std::string second_log = (dir.path() / "second.log").string();
+  const std::string state = (dir.path() / "machine.state").string();
+  const auto control = [&](const std::string& log) {
+    return std::vector<std::string>{sim_bin, "fanuc", "--baud",          "0",  "--speed", "10",
+                                    "--log", log,     "--machine-state", state};
+  };
+  BackgroundProcess first(control(first_log));
+  const std::string port = first.first_line();
+  auto argv = job(base, machine);
+  argv.insert(argv.end(), {"--port", port});
+  BackgroundProcess sender(argv);
+  std::this_thread::sleep_for(8s);
+  first.signal(SIGKILL);
+  const auto failed = sender.wait();
+  CHECK(failed.exit_code == 3);
+  REQUIRE(std::filesystem::exists(base + ".nc"));
+  std::vector<std::string> program; // the blocks the control runs: all but '%' and O
+  for (const auto& line : lines_of(base + ".nc")) {
+    if (!line.empty() && line != "%" && line.front() != 'O') {
+      program.push_back(line);
+    }
+  }
+  const auto ran_first = lines_of(first_log);
+  REQUIRE(!ran_first.empty());
+  REQUIRE(ran_first.size() < program.size());
+  REQUIRE(program[ran_first.size() - 1] == ran_first.back());
+  const std::string shown = program[ran_first.size()]; // "N123 ..."
+  REQUIRE(shown.front() == 'N');
+  const std::string block = shown.substr(1, shown.find(' ') - 1);
+  BackgroundProcess second(control(second_log));
+  const std::string port2 = second.first_line();
+  const auto resumed =
+      run_process({bin, "resume", base + ".journal", "--port", port2, "--block", block, "--yes"});
+  INFO(resumed.out << resumed.err);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(resumed.out.find("block N" + block + " runs again from its start") != std::string::npos);
+  wait_until_still(second_log); // DNC has no acknowledgements: the control is still moving
+  auto ran = ran_first;
+  const auto ran_second = lines_of(second_log);
+  ran.insert(ran.end(), ran_second.begin(), ran_second.end());
+  std::size_t next = 0;
+  int restart_blocks = 0;
+  for (const auto& line : ran) {
+    if (next < program.size() && line == program[next]) {
+      ++next;
+    } else {
+      INFO(line);
+      CHECK(line.front() != 'N'); // no program block twice
+      ++restart_blocks;
+    }
+  }
+  CHECK(next == program.size());
+  CHECK(restart_blocks > 0);
+  CHECK(restart_blocks <= 24);
 }

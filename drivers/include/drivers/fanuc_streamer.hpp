@@ -16,6 +16,8 @@
 
 #include <chrono>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace subfeed::drivers {
 
@@ -30,6 +32,9 @@ struct FanucStreamOptions {
   std::chrono::milliseconds request_timeout{60000};
   std::chrono::milliseconds xoff_timeout{30000}; // the control may hold the tape this long
   std::optional<long> from_line; // restart: restore the modal state, then send from this line
+  // With from_line: blocks sent after the modal state is restored and before that line (a
+  // resume's safe approach); they count as line 0.
+  std::vector<std::string> restart_blocks;
 };
 
 // Progress is reported through StreamObserver: lines_sent counts blocks sent (the control

@@ -9,6 +9,7 @@
 
 #include "sim/byte_channel.hpp"
 #include "sim/delivery_hash.hpp"
+#include "sim/machine_state_file.hpp"
 #include "sim/motion_planner.hpp"
 #include "sim/serve_thread.hpp"
 
@@ -48,6 +49,10 @@ struct FanucSimOptions {
   int pause_one_in = 1;
   unsigned seed = 1;
   bool record_executed = false;
+  // Append each block to this file once carried out (ExecutionLog).
+  std::string executed_log;
+  // The machine's position outlives the control (absolute encoders, standard on Fanuc).
+  std::shared_ptr<MachineStateFile> machine_state;
   FanucFaults faults;
 };
 

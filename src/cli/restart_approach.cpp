@@ -1,0 +1,115 @@
+#include "restart_approach.hpp"
+
+#include "drivers/fanuc_modal_state.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+
+namespace subfeed::cli {
+
+namespace {
+
+// The joint solution nearest `near`, rotary axes taken on the turn nearest theirs.
+Joints nearest(const post::Kinematics& k, const post::ToolPose& pose, const Joints& near) {
+  Joints best = near;
+  double best_d = INFINITY;
+  for (auto c : k.inverse(pose, near)) {
+    for (std::size_t i = 3; i < 6; ++i) {
+      c[i] += 360.0 * std::round((near[i] - c[i]) / 360.0);
+    }
+    double d = 0.0;
+    for (std::size_t i = 0; i < 6; ++i) {
+      d += (c[i] - near[i]) * (c[i] - near[i]);
+    }
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+post::ToolPose along_axis(post::ToolPose pose, double distance) {
+  for (std::size_t i = 0; i < 3; ++i) {
+    pose.tip[i] += distance * pose.axis[i];
+  }
+  return pose;
+}
+
+std::string move_line(const char* g, const Joints& j, const post::AxisSet& axes,
+                      std::initializer_list<std::size_t> which, int decimals) {
+  std::string line = g;
+  for (const auto i : which) {
+    if (axes[i]) {
+      line +=
+          fmt::format(" {}{:.{}f}", post::axis_letters[i], j[i], i < 3 ? decimals : decimals + 1);
+    }
+  }
+  return line;
+}
+
+} // namespace
+
+Joints machine_joints(const post::MachineConfig& machine, const LineEnd& end) {
+  if (!end.tcp) {
+    return end.words;
+  }
+  const auto k = post::make_kinematics(machine);
+  Joints angles{};
+  for (std::size_t i = 3; i < 6; ++i) {
+    angles[i] = end.words[i];
+  }
+  const post::ToolPose pose{{end.words[0], end.words[1], end.words[2]}, k->forward(angles).axis};
+  return nearest(*k, pose, angles);
+}
+
+bool tool_axis_fixed(const post::MachineConfig& machine) {
+  return machine.kinematics != post::KinematicsType::xyzac_head;
+}
+
+std::vector<std::string> approach_blocks(const post::MachineConfig& m, const Approach& a) {
+  const auto k = post::make_kinematics(m);
+  const int d = m.controller.decimals;
+  const double safe_z = m.post.safe_z.value_or(m.axes[2]->max);
+  const std::string f = fmt::format(" F{:.0f}", a.feed);
+  std::vector<std::string> blocks;
+  if (a.tcp) {
+    blocks.emplace_back("G49");
+  }
+  blocks.emplace_back("G94");
+  Joints up = a.to;
+  if (a.from) {
+    const Joints retract = nearest(*k, along_axis(k->forward(*a.from), a.clearance), *a.from);
+    blocks.push_back(move_line("G1", retract, m.axes, {0, 1, 2, 3, 4, 5}, d) + f);
+    up = retract;
+    up[2] = std::max(safe_z, retract[2]);
+  } else {
+    up[2] = safe_z;
+  }
+  Joints turned = up;
+  for (std::size_t i = 3; i < 6; ++i) {
+    turned[i] = a.to[i];
+  }
+  const Joints above = nearest(*k, along_axis(k->forward(a.to), a.clearance), a.to);
+  Joints over = above;
+  over[2] = up[2];
+  blocks.push_back(move_line("G0", up, m.axes, {2}, d));
+  blocks.push_back(move_line("G0", turned, m.axes, {3, 4, 5}, d));
+  blocks.push_back(move_line("G0", over, m.axes, {0, 1}, d));
+  blocks.push_back(move_line("G0", above, m.axes, {0, 1, 2, 3, 4, 5}, d));
+  blocks.push_back(move_line("G1", a.to, m.axes, {0, 1, 2, 3, 4, 5}, d) + f);
+  return blocks;
+}
+
+Expected<std::vector<std::string>> restore_blocks(const std::string& program, long after) {
+  drivers::FanucModalState modal;
+  std::ifstream in(program);
+  std::string text;
+  for (long n = 1; n <= after && std::getline(in, text); ++n) {
+    modal.apply(text);
+  }
+  return modal.restore_blocks({program, static_cast<int>(after + 1), {}});
+}
+
+} // namespace subfeed::cli

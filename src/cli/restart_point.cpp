@@ -1,0 +1,136 @@
+#include "restart_point.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
+
+namespace subfeed::cli {
+
+namespace {
+
+// Axis words of one line onto the joints; `tcp` follows G43.4 (on) and G49 (off).
+void apply_words(std::string_view line, LineEnd& end) {
+  bool comment = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (comment || c == '(') {
+      comment = c != ')';
+      continue;
+    }
+    const std::string rest(line.substr(i + 1, 24));
+    char* stop = nullptr;
+    const double value = std::strtod(rest.c_str(), &stop);
+    if (stop == rest.c_str()) {
+      continue;
+    }
+    if (const auto axis = post::axis_letters.find(c); axis != std::string_view::npos) {
+      end.words[axis] = value;
+    } else if (c == 'G' && std::abs(value - 43.4) < 1e-9) {
+      end.tcp = true;
+    } else if (c == 'G' && std::abs(value - 49.0) < 1e-9) {
+      end.tcp = false;
+    }
+  }
+}
+
+bool moves(std::string_view line) {
+  return line.find_first_of("XYZABC") != std::string_view::npos;
+}
+
+std::optional<double> place_on_move(const ProgramMove& m, const std::vector<double>& position,
+                                    int decimals) {
+  const double tolerance = 0.75 * std::pow(10.0, -std::min(decimals, 3));
+  const std::size_t n = std::min<std::size_t>(6, position.size());
+  double along = 0.0, length2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    along += (position[i] - m.start[i]) * (m.end[i] - m.start[i]);
+    length2 += (m.end[i] - m.start[i]) * (m.end[i] - m.start[i]);
+  }
+  const double t = length2 > 0.0 ? std::clamp(along / length2, 0.0, 1.0) : 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(m.start[i] + t * (m.end[i] - m.start[i]) - position[i]) > tolerance) {
+      return std::nullopt;
+    }
+  }
+  return t;
+}
+
+} // namespace
+
+Expected<ProgramWindow> read_window(const std::string& program, long lo, long hi, long extra) {
+  std::ifstream in(program);
+  if (!in) {
+    return fail(ErrorCode::bad_input, "cannot read the program", {program, 0, {}});
+  }
+  ProgramWindow w;
+  LineEnd end;
+  w.line_end[0] = end;
+  std::string text;
+  while (std::getline(in, text)) {
+    ++w.lines;
+    const Joints before = end.words;
+    apply_words(text, end);
+    if ((w.lines >= lo - 1 && w.lines <= hi) || w.lines == extra) {
+      w.line_end[w.lines] = end;
+    }
+    if (w.lines >= lo && w.lines <= hi && moves(text)) {
+      w.moves.push_back({w.lines, before, end.words});
+    }
+  }
+  if (extra > w.lines) {
+    w.line_end[extra] = end; // past the end: nothing is left to run
+  }
+  return w;
+}
+
+std::optional<RestartPoint> find_machine(const ProgramWindow& window,
+                                         const std::vector<double>& position, int decimals) {
+  std::optional<RestartPoint> found;
+  for (const auto& m : window.moves) {
+    const auto t = place_on_move(m, position, decimals);
+    if (!t) {
+      continue;
+    }
+    const bool at_end = *t >= 1.0 || place_on_move({m.line, m.end, m.end}, position, decimals);
+    const bool at_start =
+        *t <= 0.0 || place_on_move({m.line, m.start, m.start}, position, decimals);
+    const RestartPoint here{at_end ? m.line : m.line - 1, !at_end && !at_start};
+    if (!found || here.after >= found->after) {
+      found = here;
+    }
+  }
+  return found;
+}
+
+Expected<long> find_sequence_number(const std::string& program, long number, long last_sent) {
+  std::ifstream in(program);
+  if (!in) {
+    return fail(ErrorCode::bad_input, "cannot read the program", {program, 0, {}});
+  }
+  long line = 0, found = 0;
+  std::string text;
+  while (line < last_sent && std::getline(in, text)) {
+    ++line;
+    const auto start = text.find_first_not_of(' ');
+    if (start == std::string::npos ||
+        std::toupper(static_cast<unsigned char>(text[start])) != 'N') {
+      continue;
+    }
+    char* stop = nullptr;
+    const long n = std::strtol(text.c_str() + start + 1, &stop, 10);
+    if (stop != text.c_str() + start + 1 && n == number) {
+      found = line;
+    }
+  }
+  if (found == 0) {
+    return fail(ErrorCode::usage,
+                fmt::format("no block N{} among the {} lines sent", number, last_sent),
+                {program, 0, "--block"});
+  }
+  return found;
+}
+
+} // namespace subfeed::cli
