@@ -190,7 +190,7 @@ SimLineResult GcodeInterpreter::execute(std::string_view line, const AxisArray& 
     if (axis_words[a]) {
       any_axis = true;
       const double v = *axis_words[a] * (a < 3 ? unit : 1.0);
-      target[a] = absolute ? v : position[a] + v;
+      target[a] = absolute ? v + work_offset_[static_cast<std::size_t>(a)] : position[a] + v;
       if (!std::isfinite(target[a])) {
         return {invalid_target, {}, 0.0, false};
       }

@@ -63,7 +63,8 @@ std::vector<std::pair<int, std::string>> default_grbl_settings() {
 class GrblSim::Machine {
 public:
   Machine(std::unique_ptr<ByteChannel> channel, GrblSimOptions options)
-      : channel_(std::move(channel)), options_(std::move(options)), interpreter_(options_.axes),
+      : channel_(std::move(channel)), options_(std::move(options)),
+        interpreter_(options_.axes, options_.work_offset),
         // GRBL keeps one planner block spare.
         planner_(options_.planner_blocks - 1, options_.motion), rng_(options_.faults.seed) {
     for (const auto& [key, value] : default_grbl_settings()) {
@@ -621,8 +622,9 @@ private:
     std::string report = "<" + state + (options_.report_wpos ? "|WPos:" : "|MPos:");
     char number[32];
     for (int a = 0; a < options_.axes; ++a) {
+      const auto i = static_cast<std::size_t>(a);
       std::snprintf(number, sizeof number, "%s%.3f", a == 0 ? "" : ",",
-                    p[static_cast<std::size_t>(a)]);
+                    p[i] - (options_.report_wpos ? options_.work_offset[i] : 0.0));
       report += number;
     }
     report += "|Bf:" + std::to_string(planner_.free_blocks()) + "," +
@@ -630,7 +632,12 @@ private:
     std::snprintf(number, sizeof number, "|FS:%.0f,0", planner_.current_feed_mm_min());
     report += number;
     if (++status_count_ % 10 == 0) {
-      report += "|WCO:0.000,0.000,0.000";
+      report += "|WCO:";
+      for (int a = 0; a < options_.axes; ++a) {
+        std::snprintf(number, sizeof number, "%s%.3f", a == 0 ? "" : ",",
+                      options_.work_offset[static_cast<std::size_t>(a)]);
+        report += number;
+      }
     }
     if (override_changed_ || status_count_ % 10 == 5) {
       override_changed_ = false;

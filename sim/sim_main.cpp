@@ -8,6 +8,7 @@
 #include "sim/tcp_listener.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <iostream>
 
@@ -47,6 +48,7 @@ struct GrblCommand {
   long ack_delay_ms = 0;
   long boot_ms = 50;
   std::string machine_state;
+  std::vector<double> work_offset;
 };
 
 void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
@@ -67,6 +69,10 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
   add_state_options(cmd, c.sim.executed_log, c.machine_state);
+  cmd.add_option("--work-offset", c.work_offset,
+                 "G54 from the machine's zero, X,Y,Z[,A,B,C] (reported as WCO)")
+      ->delimiter(',')
+      ->expected(3, 6);
   cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error");
   cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")
       ->check(CLI::Range(1, 255));
@@ -107,6 +113,9 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   }
   if (!open_machine_state(c.machine_state, c.sim.machine_state)) {
     return 2;
+  }
+  for (std::size_t i = 0; i < std::min<std::size_t>(6, c.work_offset.size()); ++i) {
+    c.sim.work_offset[i] = c.work_offset[i];
   }
   std::unique_ptr<ByteChannel> channel;
   if (c.tcp.empty()) {

@@ -26,6 +26,7 @@
 #include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/gcode_source.hpp"
+#include "drivers/grbl_reply.hpp"
 #include "drivers/grbl_streamer.hpp"
 #include "drivers/journal.hpp"
 #include "drivers/journal_reader.hpp"
@@ -94,6 +95,50 @@ Expected<drivers::StatusReport> probe(drivers::Transport& link, const ResumeOpti
     return fail(ErrorCode::machine_fault, "the controller reported no position", {});
   }
   return *observer.status;
+}
+
+// Status reports until one says where the work offset is (GRBL adds WCO to one report in 10
+// to 30); none after `polls` leaves the report as it is.
+Expected<drivers::StatusReport> with_work_offset(drivers::Transport& link,
+                                                 drivers::StatusReport status, int polls) {
+  std::string pending;
+  for (int i = 0; i < polls && !status.work_position && !status.work_offset; ++i) {
+    SUBFEED_TRY(
+        drivers::write_all(link, std::span<const char>("?", 1), std::chrono::milliseconds(1000)));
+    char buffer[512];
+    SUBFEED_TRY_ASSIGN(const auto got,
+                       link.read(std::span<char>(buffer), std::chrono::milliseconds(200)));
+    pending.append(buffer, got);
+    for (auto end = pending.find('\n'); end != std::string::npos; end = pending.find('\n')) {
+      auto line = std::string_view(pending).substr(0, end);
+      if (line.ends_with('\r')) {
+        line.remove_suffix(1);
+      }
+      if (auto report = drivers::parse_status(line)) {
+        status = *report;
+      }
+      pending.erase(0, end + 1);
+    }
+  }
+  return status;
+}
+
+// Where the machine stands in the program's coordinates: the work position (the program runs
+// in the active work offset), from WPos or MPos less WCO.
+std::vector<double> program_position(const drivers::StatusReport& status, Logger& log) {
+  auto p = status.machine_position;
+  if (status.work_position) {
+    return p;
+  }
+  if (!status.work_offset) {
+    log.warning("the controller reported no work offset: its machine position is taken as the "
+                "program's");
+    return p;
+  }
+  for (std::size_t i = 0; i < std::min(p.size(), status.work_offset->size()); ++i) {
+    p[i] -= (*status.work_offset)[i];
+  }
+  return p;
 }
 
 // The program from line `after` + 1, behind the restart blocks (journalled as line 0).
@@ -289,7 +334,7 @@ Expected<std::vector<std::string>> restart_blocks(const Interrupted& r, const Re
 }
 
 Expected<Restart> grbl_restart(const Interrupted& r, const ResumeOptions& o,
-                               const drivers::StatusReport& status) {
+                               const std::vector<double>& position) {
   const auto& j = r.journal;
   const long lo = std::max(1L, std::min(j.last_acked, j.last_sent) - planner_reach);
   SUBFEED_TRY_ASSIGN(const auto window,
@@ -298,8 +343,7 @@ Expected<Restart> grbl_restart(const Interrupted& r, const ResumeOptions& o,
   if (o.from > 0) {
     s.after = o.from - 1;
     s.why = "as asked (--from)";
-  } else if (const auto at =
-                 find_machine(window, status.machine_position, r.machine.controller.decimals)) {
+  } else if (const auto at = find_machine(window, position, r.machine.controller.decimals)) {
     s.after = at->after;
     s.why = at->mid_block ? "the machine stopped inside the next line's move: it runs again "
                             "from its start"
@@ -311,8 +355,8 @@ Expected<Restart> grbl_restart(const Interrupted& r, const ResumeOptions& o,
                         j.last_acked, j.last_sent - lo + 1);
   }
   Joints here{};
-  for (std::size_t i = 0; i < std::min<std::size_t>(6, status.machine_position.size()); ++i) {
-    here[i] = status.machine_position[i];
+  for (std::size_t i = 0; i < std::min<std::size_t>(6, position.size()); ++i) {
+    here[i] = position[i];
   }
   SUBFEED_TRY_ASSIGN(s.blocks, restart_blocks(r, o, window, s.after, here));
   return s;
@@ -409,13 +453,14 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
   if (r.dnc) {
     SUBFEED_TRY_ASSIGN(restart, dnc_restart(r, o));
   } else {
-    SUBFEED_TRY_ASSIGN(const auto status, probe(*link.transport, o));
+    SUBFEED_TRY_ASSIGN(auto status, probe(*link.transport, o));
+    SUBFEED_TRY_ASSIGN(status, with_work_offset(*link.transport, std::move(status), 40));
     if (status.state == "Alarm") {
       return fail(ErrorCode::machine_fault,
                   "the controller is in alarm: home it ($H) or unlock it ($X), then resume again",
                   {o.journal, 0, {}});
     }
-    SUBFEED_TRY_ASSIGN(restart, grbl_restart(r, o, status));
+    SUBFEED_TRY_ASSIGN(restart, grbl_restart(r, o, program_position(status, log)));
   }
   show(restart, r, o, log);
   if (!confirmed(o)) {

@@ -28,15 +28,19 @@ struct SimLineResult {
 
 class GcodeInterpreter {
 public:
-  explicit GcodeInterpreter(int axes) : axes_(axes) {}
+  // Absolute words are in the work frame, `work_offset` (G54) from the machine's zero.
+  explicit GcodeInterpreter(int axes, const AxisArray& work_offset = {})
+      : axes_(axes), work_offset_(work_offset) {}
 
-  // `line` has no spaces or comments; `position` is where the machine will be when this
-  // line's move starts. Modal state changes only when the line is accepted.
+  // `line` has no spaces or comments; `position` (machine coordinates) is where the machine
+  // will be when this line's move starts; targets are machine coordinates. Modal state
+  // changes only when the line is accepted.
   [[nodiscard]] SimLineResult execute(std::string_view line, const AxisArray& position);
   void reset(); // modal state back to power-up defaults
 
 private:
   int axes_;
+  AxisArray work_offset_;
   bool absolute_ = true;
   bool inches_ = false;
   bool inverse_time_ = false;

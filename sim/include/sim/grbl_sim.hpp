@@ -48,6 +48,7 @@ struct GrblSimOptions {
   int baud = 115200;        // emulated wire speed, both directions; 0 = unlimited
   bool grblhal = false;     // grblHAL banner, [OPT:] and latching errors
   bool report_wpos = false; // WPos instead of MPos in status reports
+  AxisArray work_offset{};  // G54 from the machine's zero: reported as WCO
   // GRBL on an Arduino resets when its port opens and boots for about 1.5 s, dropping what
   // arrives meanwhile, then prints its banner. grblHAL does not reset on connect.
   std::chrono::milliseconds boot_time{50};
