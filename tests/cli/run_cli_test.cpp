@@ -96,9 +96,11 @@ std::vector<std::string> program_lines(const std::string& nc) {
 }
 
 // Checks that `executed` holds every program line exactly once, in order, and otherwise
-// only restart blocks (G words: modes and the approach), at most `restarts` of them.
+// only restart blocks (modes and the approach; `restart_block` tells them apart from the
+// program's own), at most `restarts` of them.
 void require_exactly_once(const std::vector<std::string>& program,
-                          const std::vector<std::string>& executed, int restarts) {
+                          const std::vector<std::string>& executed, int restarts,
+                          bool (*restart_block)(const std::string&)) {
   std::size_t next = 0;
   int restart_blocks = 0;
   for (const auto& line : executed) {
@@ -106,13 +108,39 @@ void require_exactly_once(const std::vector<std::string>& program,
       ++next;
     } else {
       INFO(line);
-      CHECK(line.front() == 'G');
+      CHECK(restart_block(line));
       ++restart_blocks;
     }
   }
   CHECK(next == program.size());
   CHECK(restart_blocks > 0);
   CHECK(restart_blocks <= restarts);
+}
+
+// GRBL programs have no N numbers: restart blocks are the G-word lines subfeed adds.
+bool grbl_restart_block(const std::string& line) {
+  return line.front() == 'G';
+}
+
+// Every block of a Fanuc-style run program has an N number; the restart blocks have none.
+bool dnc_restart_block(const std::string& line) {
+  return line.front() != 'N';
+}
+
+// Runs the seat job on `machine` against the controller `first`, kills the controller 8 s
+// in, and checks that run failed as it should, with the program complete for a resume.
+void kill_controller_mid_job(BackgroundProcess& first, const std::string& base,
+                             const std::string& machine) {
+  const std::string port = first.first_line();
+  auto argv = job(base, machine);
+  argv.insert(argv.end(), {"--port", port});
+  BackgroundProcess sender(argv);
+  std::this_thread::sleep_for(8s);
+  first.signal(SIGKILL);
+  const auto failed = sender.wait();
+  CHECK(failed.exit_code == 3);
+  CHECK(failed.err.find("subfeed resume") != std::string::npos);
+  REQUIRE(std::filesystem::exists(base + ".nc"));
 }
 
 std::vector<std::string> sim_args(const std::string& log) {
@@ -147,7 +175,7 @@ TEST_CASE("subfeed killed mid-job: resume rebuilds the program and runs every li
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
   CHECK(resumed.out.find("(the machine stands at the end of that line)") != std::string::npos);
-  require_exactly_once(program_lines(base + ".nc"), lines_of(log), 16);
+  require_exactly_once(program_lines(base + ".nc"), lines_of(log), 16, grbl_restart_block);
 }
 
 TEST_CASE("a simulated controller killed mid-job: resume on a new one runs every block once",
@@ -171,16 +199,7 @@ TEST_CASE("a simulated controller killed mid-job: resume on a new one runs every
     return args;
   };
   BackgroundProcess first(controller(first_log));
-  const std::string port = first.first_line();
-  auto argv = job(base, grblhal);
-  argv.insert(argv.end(), {"--port", port});
-  BackgroundProcess sender(argv);
-  std::this_thread::sleep_for(8s);
-  first.signal(SIGKILL);
-  const auto failed = sender.wait();
-  CHECK(failed.exit_code == 3);
-  CHECK(failed.err.find("subfeed resume") != std::string::npos);
-  REQUIRE(std::filesystem::exists(base + ".nc")); // finished for the resume
+  kill_controller_mid_job(first, base, grblhal);
   BackgroundProcess second(controller(second_log));
   const std::string port2 = second.first_line();
   const auto resumed = run_process({bin, "resume", base + ".journal", "--port", port2, "--yes"});
@@ -194,7 +213,7 @@ TEST_CASE("a simulated controller killed mid-job: resume on a new one runs every
   ran.insert(ran.end(), ran_second.begin(), ran_second.end());
   if (keeps_position) {
     CHECK(resumed.out.find("may be cut again") == std::string::npos);
-    require_exactly_once(program, ran, 16);
+    require_exactly_once(program, ran, 16, grbl_restart_block);
     return;
   }
   CHECK(resumed.out.find("may be cut again") != std::string::npos);
@@ -337,15 +356,7 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
                                     "--log", log,     "--machine-state", state};
   };
   BackgroundProcess first(control(first_log));
-  const std::string port = first.first_line();
-  auto argv = job(base, machine);
-  argv.insert(argv.end(), {"--port", port});
-  BackgroundProcess sender(argv);
-  std::this_thread::sleep_for(8s);
-  first.signal(SIGKILL);
-  const auto failed = sender.wait();
-  CHECK(failed.exit_code == 3);
-  REQUIRE(std::filesystem::exists(base + ".nc"));
+  kill_controller_mid_job(first, base, machine);
   std::vector<std::string> program; // the blocks the control runs: all but '%' and O
   for (const auto& line : lines_of(base + ".nc")) {
     if (!line.empty() && line != "%" && line.front() != 'O') {
@@ -370,18 +381,5 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
   auto ran = ran_first;
   const auto ran_second = lines_of(second_log);
   ran.insert(ran.end(), ran_second.begin(), ran_second.end());
-  std::size_t next = 0;
-  int restart_blocks = 0;
-  for (const auto& line : ran) {
-    if (next < program.size() && line == program[next]) {
-      ++next;
-    } else {
-      INFO(line);
-      CHECK(line.front() != 'N'); // no program block twice
-      ++restart_blocks;
-    }
-  }
-  CHECK(next == program.size());
-  CHECK(restart_blocks > 0);
-  CHECK(restart_blocks <= 24);
+  require_exactly_once(program, ran, 24, dnc_restart_block);
 }
