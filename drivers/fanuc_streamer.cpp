@@ -33,6 +33,9 @@ public:
 
   Expected<StreamSummary> run() {
     SUBFEED_TRY_ASSIGN(const FanucScan scan, program_.scan());
+    for (const auto& b : options_.restart_blocks) { // before anything is on the tape
+      SUBFEED_TRY(check_tape_block(b, {program_.name(), 0, "resume"}));
+    }
     total_ = scan.blocks + (scan.framed ? 0 : 3);
     if (options_.wait_for_request) {
       SUBFEED_TRY(wait_for_request());
@@ -91,7 +94,6 @@ private:
         SUBFEED_TRY(send_block(b, 0));
       }
       for (const auto& b : options_.restart_blocks) {
-        SUBFEED_TRY(check_tape_block(b, {program_.name(), 0, "resume"}));
         SUBFEED_TRY(send_block(b, 0));
       }
       restored = true;

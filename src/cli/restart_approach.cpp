@@ -95,7 +95,9 @@ std::vector<std::string> approach_blocks(const post::MachineConfig& m, const App
   Joints over = above;
   over[2] = up[2];
   blocks.push_back(move_line("G0", up, m.axes, {2}, d));
-  blocks.push_back(move_line("G0", turned, m.axes, {3, 4, 5}, d));
+  if (m.axes[3] || m.axes[4] || m.axes[5]) {
+    blocks.push_back(move_line("G0", turned, m.axes, {3, 4, 5}, d));
+  }
   blocks.push_back(move_line("G0", over, m.axes, {0, 1}, d));
   blocks.push_back(move_line("G0", above, m.axes, {0, 1, 2, 3, 4, 5}, d));
   blocks.push_back(move_line("G1", a.to, m.axes, {0, 1, 2, 3, 4, 5}, d) + f);

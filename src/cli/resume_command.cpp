@@ -37,6 +37,7 @@
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
+#include <utility>
 
 namespace subfeed::cli {
 
@@ -97,27 +98,70 @@ Expected<drivers::StatusReport> probe(drivers::Transport& link, const ResumeOpti
   return *observer.status;
 }
 
+bool moving(const drivers::StatusReport& status) {
+  return status.state == "Run" || status.state == "Jog" || status.state == "Home" ||
+         (status.state == "Hold" && status.substate != 0);
+}
+
+// Asks for a status report ('?', a realtime byte) and returns the newest that came back
+// within 200 ms (5 a second, as GRBL wants at most); other lines are dropped.
+Expected<std::optional<drivers::StatusReport>> poll_status(drivers::Transport& link,
+                                                           std::string& pending) {
+  SUBFEED_TRY(
+      drivers::write_all(link, std::span<const char>("?", 1), std::chrono::milliseconds(1000)));
+  char buffer[512];
+  SUBFEED_TRY_ASSIGN(const auto got,
+                     link.read(std::span<char>(buffer), std::chrono::milliseconds(200)));
+  pending.append(buffer, got);
+  std::optional<drivers::StatusReport> newest;
+  for (auto end = pending.find('\n'); end != std::string::npos; end = pending.find('\n')) {
+    auto line = std::string_view(pending).substr(0, end);
+    if (line.ends_with('\r')) {
+      line.remove_suffix(1);
+    }
+    if (auto report = drivers::parse_status(line)) {
+      newest = std::move(report);
+    }
+    pending.erase(0, end + 1);
+  }
+  return newest;
+}
+
+// A controller that lost only its link runs what it holds, and a hold decelerates: where
+// the machine stands is known once it stands still.
+Expected<void> wait_until_still(drivers::Transport& link, const ResumeOptions& o, Logger& log) {
+  constexpr auto wait_for_motion = std::chrono::minutes(10);
+  const auto start = std::chrono::steady_clock::now();
+  const auto silent = std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1e3));
+  std::string pending;
+  bool told = false;
+  while (true) {
+    SUBFEED_TRY_ASSIGN(const auto report, poll_status(link, pending));
+    const auto waited = std::chrono::steady_clock::now() - start;
+    if (report && !moving(*report)) {
+      return {};
+    }
+    if (report && !std::exchange(told, true)) {
+      log.info("the machine is still moving (" + report->state + "): waiting for it to stop");
+    }
+    if (!told && waited > silent) {
+      return {}; // no report: the handshake says why
+    }
+    if (waited > wait_for_motion) {
+      return fail(ErrorCode::machine_fault, "the machine did not stop within 10 minutes", {});
+    }
+  }
+}
+
 // Status reports until one says where the work offset is (GRBL adds WCO to one report in 10
-// to 30); none after `polls` leaves the report as it is.
+// to 30); after `polls` without, the report stays as it is.
 Expected<drivers::StatusReport> with_work_offset(drivers::Transport& link,
                                                  drivers::StatusReport status, int polls) {
   std::string pending;
   for (int i = 0; i < polls && !status.work_position && !status.work_offset; ++i) {
-    SUBFEED_TRY(
-        drivers::write_all(link, std::span<const char>("?", 1), std::chrono::milliseconds(1000)));
-    char buffer[512];
-    SUBFEED_TRY_ASSIGN(const auto got,
-                       link.read(std::span<char>(buffer), std::chrono::milliseconds(200)));
-    pending.append(buffer, got);
-    for (auto end = pending.find('\n'); end != std::string::npos; end = pending.find('\n')) {
-      auto line = std::string_view(pending).substr(0, end);
-      if (line.ends_with('\r')) {
-        line.remove_suffix(1);
-      }
-      if (auto report = drivers::parse_status(line)) {
-        status = *report;
-      }
-      pending.erase(0, end + 1);
+    SUBFEED_TRY_ASSIGN(const auto report, poll_status(link, pending));
+    if (report) {
+      status = *report;
     }
   }
   return status;
@@ -453,6 +497,7 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
   if (r.dnc) {
     SUBFEED_TRY_ASSIGN(restart, dnc_restart(r, o));
   } else {
+    SUBFEED_TRY(wait_until_still(*link.transport, o, log));
     SUBFEED_TRY_ASSIGN(auto status, probe(*link.transport, o));
     SUBFEED_TRY_ASSIGN(status, with_work_offset(*link.transport, std::move(status), 40));
     if (status.state == "Alarm") {

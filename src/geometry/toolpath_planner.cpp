@@ -68,6 +68,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   s.mesh_vertices = m.vertex_count();
   s.mesh_triangles = m.triangle_count();
   s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
+  s.unreachable_regions = unreachable_regions(m, intervals.reachable);
   s.min_interval = intervals.min_interval;
   s.max_interval = intervals.max_interval;
   s.reference = planner.deformation_.reference;

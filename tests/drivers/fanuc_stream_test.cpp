@@ -167,6 +167,29 @@ TEST_CASE("DNC: a restart from block N restores the modal state first", "[pty]")
                                                                 "G01 F800", "X20.0 Y5.0", "X30.0"});
 }
 
+TEST_CASE("DNC: a resume's approach goes between the restored modes and the restart block",
+          "[pty]") {
+  FanucBench bench(fast_control());
+  const std::string program = "G21 G90\nG00 X0 Y0\nG01 Z-1.0 F800\nX10.0\nX20.0\n";
+  bench.options.from_line = 4;
+  bench.options.restart_blocks = {"G94", "G00 Z50.0", "G01 X0 Y0 Z-1.0 F300", "G01 F800"};
+  REQUIRE(bench.send(program));
+  CHECK(bench.sim->stats().executed == std::vector<std::string>{"G21 G90", "G01 F800", "G94",
+                                                                "G00 Z50.0", "G01 X0 Y0 Z-1.0 F300",
+                                                                "G01 F800", "X10.0", "X20.0"});
+}
+
+TEST_CASE("DNC: a resume block outside ISO 840 is refused before anything is sent", "[pty]") {
+  FanucBench bench(fast_control());
+  bench.options.from_line = 2;
+  bench.options.restart_blocks = {"G00 z50.0"};
+  const auto refused = bench.send("G21 G90\nG00 X0 Y0\n");
+  REQUIRE_FALSE(refused);
+  CHECK(refused.error().where.key == "resume");
+  CHECK(bench.sim->stats().blocks_received == 0);
+  CHECK_FALSE(bench.sim->stats().program_started);
+}
+
 TEST_CASE("DNC: no restart inside cutter compensation", "[pty]") {
   FanucBench bench(fast_control());
   bench.options.from_line = 3;

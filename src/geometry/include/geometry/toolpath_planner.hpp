@@ -31,6 +31,7 @@
 #include "geometry/pass_intervals.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
+#include "geometry/unreachable_regions.hpp"
 
 #include <functional>
 #include <optional>
@@ -63,6 +64,7 @@ struct PlanSummary {
   long mesh_vertices = 0;
   long mesh_triangles = 0;
   long unreachable_vertices = 0;
+  std::vector<UnreachableRegion> unreachable_regions; // where they are, largest first
   double min_interval = 0.0; // mm between planes, over the surface
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space

@@ -1,0 +1,67 @@
+// Where the ball cannot reach, located: connected groups of blocked vertices, and on a bowl
+// narrower than the ball, the one region at its bottom.
+
+#include "geometry/limit_surface.hpp"
+#include "geometry/toolpath_planner.hpp"
+#include "geometry/unreachable_regions.hpp"
+#include "support/grid_cage.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace subfeed::geometry;
+
+TEST_CASE("blocked vertices sharing triangle edges form one region; apart, two") {
+  // A strip of 8 vertices in two rows: x = 0..3, y = 0 and 1; triangles between them.
+  SurfaceMesh mesh;
+  for (int row = 0; row < 2; ++row) {
+    for (int x = 0; x < 4; ++x) {
+      mesh.points.emplace_back(x, row, 0.5 * x);
+    }
+  }
+  for (int x = 0; x < 3; ++x) {
+    mesh.triangles.push_back({x, x + 1, x + 5});
+    mesh.triangles.push_back({x, x + 5, x + 4});
+  }
+  SECTION("x = 0 and x = 3 columns blocked: two regions, apart") {
+    const std::vector<char> reachable{0, 1, 1, 0, 0, 1, 1, 0};
+    const auto regions = unreachable_regions(mesh, reachable);
+    REQUIRE(regions.size() == 2);
+    CHECK(regions[0].vertices == 2);
+    CHECK(regions[1].vertices == 2);
+    CHECK(regions[0].centroid.isApprox(Eigen::Vector3d(0.0, 0.5, 0.0)));
+    CHECK(regions[1].centroid.isApprox(Eigen::Vector3d(3.0, 0.5, 1.5)));
+  }
+  SECTION("three columns blocked: one region with its box") {
+    const std::vector<char> reachable{0, 0, 0, 1, 0, 0, 0, 1};
+    const auto regions = unreachable_regions(mesh, reachable);
+    REQUIRE(regions.size() == 1);
+    CHECK(regions[0].vertices == 6);
+    CHECK(regions[0].low.isApprox(Eigen::Vector3d(0.0, 0.0, 0.0)));
+    CHECK(regions[0].high.isApprox(Eigen::Vector3d(2.0, 1.0, 1.0)));
+  }
+  SECTION("everything reachable: no region") {
+    CHECK(unreachable_regions(mesh, std::vector<char>(8, 1)).empty());
+  }
+}
+
+TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
+  // z = 0.25 (x^2 + y^2): radius 2 mm at the bottom, growing outward; a 3 mm ball reaches
+  // only where the radius across the passes has grown past 3 mm.
+  const auto cage = subfeed::testing::grid_cage(9, 2.0, 0.25, 0.25);
+  const auto surface = LimitSurface::build(cage);
+  REQUIRE(surface);
+  PlanOptions options;
+  options.ball_radius = 3.0;
+  options.scallop = 0.01;
+  const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
+  REQUIRE(planner);
+  const auto& s = planner->summary();
+  REQUIRE(s.unreachable_vertices > 0);
+  REQUIRE(s.unreachable_regions.size() == 1);
+  const auto& r = s.unreachable_regions.front();
+  CHECK(r.vertices == s.unreachable_vertices);
+  CHECK(std::abs(r.centroid.x()) < 0.05);
+  CHECK(std::abs(r.centroid.y()) < 1.0);
+  CHECK(r.low.x() < 0.0);
+  CHECK(r.high.x() > 0.0);
+}
