@@ -149,6 +149,8 @@ void bench_stages(const fs::path& dir) {
   bench::report({"run end to end", run_rate, "blocks/s", "slowest stage alone", slowest});
   bench::report({"time to first block", json_number(run.out, "job", "first_block_s"), "s",
                  "planning alone", plan.seconds, false});
+  bench::report({"time to first move", json_number(run.out, "job", "first_move_s"), "s",
+                 "planning alone", plan.seconds, false});
   bench::report(
       {"peak memory, run of that job", run.peak_mib, "MiB", "plan alone", plan.peak_mib, false});
 }

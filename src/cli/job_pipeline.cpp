@@ -8,6 +8,7 @@
 #include "post/program_writer.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace subfeed::cli {
@@ -24,6 +25,21 @@ Error in_file(Error error, const std::filesystem::path& file) {
     error.where.file = file.string();
   }
   return error;
+}
+
+// Whether a program line has an axis word (comments skipped).
+bool moves_an_axis(std::string_view line) {
+  bool comment = false;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const char c = line[i];
+    comment = comment ? c != ')' : c == '(';
+    const char next = line[i + 1];
+    if (!comment && std::string_view("XYZABC").find(c) != std::string_view::npos &&
+        (std::isdigit(static_cast<unsigned char>(next)) != 0 || next == '-' || next == '.')) {
+      return true;
+    }
+  }
+  return false;
 }
 
 double distance(const cl::ClPose& a, const cl::ClPose& b) {
@@ -143,6 +159,9 @@ Expected<void> JobPipeline::read_all() {
 
 void JobPipeline::put_line(std::string_view text, double cut_mm, double minutes) {
   const long line = ++lines_posted_;
+  if (first_motion_line_ == 0 && moves_an_axis(text)) {
+    first_motion_line_ = line;
+  }
   if (detached_) {
     return;
   }

@@ -81,6 +81,10 @@ public:
   // Waits for both threads; the files are in place when this succeeds.
   [[nodiscard]] Expected<JobTotals> finish();
 
+  // The program line of the first move (0 until it is posted): the job's first block may
+  // be a mode line the post writes before the planner has a pose.
+  [[nodiscard]] long first_motion_line() const { return first_motion_line_; }
+
   // Thread-safe, for the display: progress through program line `acked_line`.
   [[nodiscard]] JobProgress progress(long acked_line);
 
@@ -103,6 +107,7 @@ private:
   std::atomic<bool> planned_{false};
   std::atomic<long> passes_{0};
   std::atomic<long> lines_posted_{0};
+  std::atomic<long> first_motion_line_{0};
   std::atomic<long> plane_{0}, planes_{0};
   std::atomic<double> cut_planned_{0.0};
   std::mutex ledger_mutex_;

@@ -13,9 +13,14 @@ JobReporter::JobReporter(Logger& log, bool json, JobPipeline& job, bool acks, do
 
 void JobReporter::line_sent(long line, long /*bytes*/) {
   ++sent_;
+  const double now =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (!first_block_s_) {
-    first_block_s_ =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    first_block_s_ = now;
+  }
+  const long first_move = job_.first_motion_line();
+  if (!first_move_s_ && first_move > 0 && line >= first_move) {
+    first_move_s_ = now;
   }
   if (!acks_ && line > 0) {
     done_line_ = line;

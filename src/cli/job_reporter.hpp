@@ -33,6 +33,8 @@ public:
                 int bits_per_character);
   void failed(const Error& error);
   [[nodiscard]] std::optional<double> first_block_s() const { return first_block_s_; }
+  // Seconds from start until the first line that moves an axis was sent.
+  [[nodiscard]] std::optional<double> first_move_s() const { return first_move_s_; }
   // Seconds from start to the end of the stream (once finished() was called).
   [[nodiscard]] double streamed_s() const { return streamed_s_; }
 
@@ -47,6 +49,7 @@ private:
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_update_{};
   std::optional<double> first_block_s_;
+  std::optional<double> first_move_s_;
   double streamed_s_ = 0.0;
   long done_line_ = 0;
   long sent_ = 0, done_ = 0;

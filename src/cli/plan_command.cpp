@@ -3,6 +3,7 @@
 
 #include "command.hpp"
 #include "plan_flags.hpp"
+#include "plan_report.hpp"
 
 #include "cl/cl_writer.hpp"
 #include "geometry/limit_surface.hpp"
@@ -10,35 +11,12 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <fmt/format.h>
 #include <unistd.h>
 
 namespace subfeed::cli {
 
 namespace {
-
-// Rounded to the hundredth shown, and never "-0.00".
-double shown_mm(double v) {
-  return std::round(v * 100.0) / 100.0 + 0.0;
-}
-
-// Where material is left, largest region first: a user can re-cut there with a smaller ball.
-void report_regions(const std::vector<geometry::UnreachableRegion>& regions, Logger& log) {
-  constexpr std::size_t shown = 8;
-  for (std::size_t i = 0; i < std::min(shown, regions.size()); ++i) {
-    const auto& r = regions[i];
-    const Eigen::Vector3d size = r.high - r.low;
-    log.warning(
-        fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm: {} vertices over {:.2f} x {:.2f} "
-                    "x {:.2f} mm",
-                    shown_mm(r.centroid.x()), shown_mm(r.centroid.y()), shown_mm(r.centroid.z()),
-                    r.vertices, size.x(), size.y(), size.z()));
-  }
-  if (regions.size() > shown) {
-    log.warning(fmt::format("    and {} smaller regions", regions.size() - shown));
-  }
-}
 
 struct PlanCommandOptions {
   std::string cage;
@@ -89,13 +67,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                                            1 << s.inserted_depth)
                              : std::string()));
   }
-  if (s.unreachable_vertices > 0 || s.lifted_points > 0) {
-    log.warning(
-        fmt::format("  the ball cannot reach {} surface vertices (hollows narrower than the "
-                    "ball); {} CL points lifted clear there, leaving material",
-                    s.unreachable_vertices, s.lifted_points));
-    report_regions(s.unreachable_regions, log);
-  }
+  report_unreachable(s, log);
   return {};
 }
 

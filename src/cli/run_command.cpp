@@ -11,6 +11,7 @@
 #include "job_pipeline.hpp"
 #include "job_reporter.hpp"
 #include "plan_flags.hpp"
+#include "plan_report.hpp"
 #include "run_job.hpp"
 
 #include "drivers/fanuc_streamer.hpp"
@@ -54,12 +55,14 @@ Expected<drivers::StreamSummary> stream(const RunOptions& o, int sim_baud,
 
 void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter& reporter,
                    bool json, Logger& log) {
+  report_unreachable(t.plan, log);
   if (json) {
     std::printf("{\"event\":\"job\",\"passes\":%ld,\"cl_points\":%ld,\"lines\":%ld,"
                 "\"cut_mm\":%.3f,\"machine_min\":%.3f,\"first_block_s\":%.4f,"
-                "\"streamed_s\":%.4f}\n",
+                "\"first_move_s\":%.4f,\"streamed_s\":%.4f}\n",
                 t.plan.passes, t.plan.points, t.lines, t.cut_mm, t.machine_min,
-                reporter.first_block_s().value_or(-1.0), reporter.streamed_s());
+                reporter.first_block_s().value_or(-1.0), reporter.first_move_s().value_or(-1.0),
+                reporter.streamed_s());
     std::fflush(stdout);
     return;
   }
@@ -67,9 +70,10 @@ void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter&
                        "{:.1f} min",
                        files.cl.string(), t.plan.passes, t.cut_mm, files.nc.string(), t.lines,
                        t.machine_min));
-  if (reporter.first_block_s()) {
-    log.info(fmt::format("  first block reached the controller {:.3f} s after start",
-                         *reporter.first_block_s()));
+  if (reporter.first_block_s() && reporter.first_move_s()) {
+    log.info(fmt::format("  first block reached the controller {:.3f} s after start, the first "
+                         "move {:.3f} s after start",
+                         *reporter.first_block_s(), *reporter.first_move_s()));
   }
 }
 

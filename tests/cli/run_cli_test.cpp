@@ -63,6 +63,7 @@ TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted,
   CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
   CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
   CHECK(r.out.find("first block reached the controller") != std::string::npos);
+  CHECK(r.out.find(", the first move ") != std::string::npos);
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK(std::filesystem::exists(base + ext));
   }
