@@ -1,7 +1,5 @@
 #include "sim/fanuc_sim.hpp"
 
-#include "sim/execution_log.hpp"
-
 #include "sim/delivery_hash.hpp"
 
 #include "sim/gcode_interpreter.hpp"
@@ -51,13 +49,9 @@ class FanucSim::Control {
 public:
   Control(std::unique_ptr<ByteChannel> channel, FanucSimOptions options)
       : channel_(std::move(channel)), options_(std::move(options)), interpreter_(6),
-        planner_(options_.look_ahead_blocks, options_.motion), rng_(options_.seed) {
-    if (!options_.executed_log.empty()) {
-      log_ = std::make_unique<ExecutionLog>(options_.executed_log);
-    }
-    if (options_.machine_state && options_.machine_state->stored()) {
-      planner_.set_position(*options_.machine_state->stored());
-    }
+        planner_(options_.look_ahead_blocks, options_.motion), record_(options_.record),
+        rng_(options_.seed) {
+    record_.restore(planner_);
   }
 
   [[nodiscard]] std::string address() const { return channel_->address(); }
@@ -71,12 +65,7 @@ public:
       const auto finished =
           planner_.advance(std::chrono::duration<double>(now - last).count(), false);
       last = now;
-      if (log_) {
-        log_->finished(finished);
-      }
-      if (options_.machine_state) {
-        options_.machine_state->save(planner_.position());
-      }
+      record_.advanced(planner_, finished);
       execute_blocks();
       release_flow();
       flush_output();
@@ -283,9 +272,7 @@ private:
     if (moves) {
       planner_.push(result.move);
     }
-    if (log_) {
-      log_->accepted(block, moves);
-    }
+    record_.accepted(block, moves);
     ++stats_.executed_count;
     stats_.executed_hash = delivery_hash(stats_.executed_hash, block);
     if (options_.record_executed) {
@@ -304,7 +291,7 @@ private:
   FanucSimOptions options_;
   GcodeInterpreter interpreter_;
   MotionPlanner planner_;
-  std::unique_ptr<ExecutionLog> log_;
+  MachineRecord record_;
   std::mt19937 rng_;
   mutable std::mutex mutex_;
   FanucSimStats stats_;

@@ -1,7 +1,6 @@
 #include "sim/grbl_sim.hpp"
 
 #include "sim/delivery_hash.hpp"
-#include "sim/execution_log.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -66,16 +65,12 @@ public:
       : channel_(std::move(channel)), options_(std::move(options)),
         interpreter_(options_.axes, options_.work_offset),
         // GRBL keeps one planner block spare.
-        planner_(options_.planner_blocks - 1, options_.motion), rng_(options_.faults.seed) {
+        planner_(options_.planner_blocks - 1, options_.motion), rng_(options_.faults.seed),
+        record_(options_.record) {
     for (const auto& [key, value] : default_grbl_settings()) {
       settings_[key] = value;
     }
-    if (!options_.executed_log.empty()) {
-      log_ = std::make_unique<ExecutionLog>(options_.executed_log);
-    }
-    if (options_.machine_state && options_.machine_state->stored()) {
-      planner_.set_position(*options_.machine_state->stored());
-    }
+    record_.restore(planner_);
     alarm_locked_ = options_.alarm_on_boot;
   }
 
@@ -268,12 +263,7 @@ private:
     const double scale = feed_override_ / 100.0;
     const std::lock_guard lock(mutex_);
     const auto finished = planner_.advance(seconds * scale, hold_complete());
-    if (log_) {
-      log_->finished(finished);
-    }
-    if (options_.machine_state) {
-      options_.machine_state->save(planner_.position());
-    }
+    record_.advanced(planner_, finished);
     const auto& alarm_after = options_.faults.alarm_after_s;
     if (alarm_after && first_program_line_at_ && !alarm_fired_ &&
         Clock::now() - *first_program_line_at_ >= std::chrono::duration<double>(*alarm_after)) {
@@ -284,9 +274,7 @@ private:
 
   void drop_queue() {
     planner_.clear();
-    if (log_) {
-      log_->dropped();
-    }
+    record_.dropped();
   }
 
   void raise_alarm(int code) {
@@ -448,9 +436,7 @@ private:
     if (options_.record_executed) {
       stats_.executed.push_back(line);
     }
-    if (log_) {
-      log_->accepted(line, queued_move);
-    }
+    record_.accepted(line, queued_move);
   }
 
   [[nodiscard]] bool idle_or_alarm() const { return !holding_ && planner_.empty(); }
@@ -660,7 +646,7 @@ private:
   Clock::time_point last_flush_ = Clock::now();
   std::map<int, std::string> settings_;
   std::mt19937 rng_;
-  std::unique_ptr<ExecutionLog> log_;
+  MachineRecord record_;
   mutable std::mutex mutex_;
   GrblSimStats stats_;
 

@@ -68,7 +68,7 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
   cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
-  add_state_options(cmd, c.sim.executed_log, c.machine_state);
+  add_state_options(cmd, c.sim.record.executed_log, c.machine_state);
   cmd.add_option("--work-offset", c.work_offset,
                  "G54 from the machine's zero, X,Y,Z[,A,B,C] (reported as WCO)")
       ->delimiter(',')
@@ -111,7 +111,7 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   if (c.alarm_after_s > 0.0) {
     c.sim.faults.alarm_after_s = c.alarm_after_s;
   }
-  if (!open_machine_state(c.machine_state, c.sim.machine_state)) {
+  if (!open_machine_state(c.machine_state, c.sim.record.machine_state)) {
     return 2;
   }
   for (std::size_t i = 0; i < std::min<std::size_t>(6, c.work_offset.size()); ++i) {
@@ -186,7 +186,7 @@ void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
                  "Drain jitter: random stalls of up to MS milliseconds")
       ->type_name("MS");
   cmd.add_option("--seed", c.sim.seed, "Random seed for stalls");
-  add_state_options(cmd, c.sim.executed_log, c.machine_state);
+  add_state_options(cmd, c.sim.record.executed_log, c.machine_state);
 }
 
 int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
@@ -209,7 +209,7 @@ int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
   c.sim.faults.drop_at_block = positive(c.drop_at);
   c.sim.max_block_pause = std::chrono::milliseconds(c.max_pause_ms);
   c.sim.pause_one_in = 20;
-  if (!open_machine_state(c.machine_state, c.sim.machine_state)) {
+  if (!open_machine_state(c.machine_state, c.sim.record.machine_state)) {
     return 2;
   }
   auto pty = Pty::open();

@@ -6,9 +6,9 @@
 #include "motion_time.hpp"
 #include "post/post_processor.hpp"
 #include "post/program_writer.hpp"
+#include "restart_point.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 namespace subfeed::cli {
@@ -25,21 +25,6 @@ Error in_file(Error error, const std::filesystem::path& file) {
     error.where.file = file.string();
   }
   return error;
-}
-
-// Whether a program line has an axis word (comments skipped).
-bool moves_an_axis(std::string_view line) {
-  bool comment = false;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const char c = line[i];
-    comment = comment ? c != ')' : c == '(';
-    const char next = line[i + 1];
-    if (!comment && std::string_view("XYZABC").find(c) != std::string_view::npos &&
-        (std::isdigit(static_cast<unsigned char>(next)) != 0 || next == '-' || next == '.')) {
-      return true;
-    }
-  }
-  return false;
 }
 
 double distance(const cl::ClPose& a, const cl::ClPose& b) {

@@ -1,6 +1,7 @@
 #include "restart_approach.hpp"
 
 #include "drivers/fanuc_modal_state.hpp"
+#include "post/rotary_tracker.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -9,26 +10,6 @@
 namespace subfeed::cli {
 
 namespace {
-
-// The joint solution nearest `near`, rotary axes taken on the turn nearest theirs.
-Joints nearest(const post::Kinematics& k, const post::ToolPose& pose, const Joints& near) {
-  Joints best = near;
-  double best_d = INFINITY;
-  for (auto c : k.inverse(pose, near)) {
-    for (std::size_t i = 3; i < 6; ++i) {
-      c[i] += 360.0 * std::round((near[i] - c[i]) / 360.0);
-    }
-    double d = 0.0;
-    for (std::size_t i = 0; i < 6; ++i) {
-      d += (c[i] - near[i]) * (c[i] - near[i]);
-    }
-    if (d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  return best;
-}
 
 post::ToolPose along_axis(post::ToolPose pose, double distance) {
   for (std::size_t i = 0; i < 3; ++i) {
@@ -56,12 +37,13 @@ Joints machine_joints(const post::MachineConfig& machine, const LineEnd& end) {
     return end.words;
   }
   const auto k = post::make_kinematics(machine);
+  const post::RotaryTracker solutions(*k, machine);
   Joints angles{};
   for (std::size_t i = 3; i < 6; ++i) {
     angles[i] = end.words[i];
   }
   const post::ToolPose pose{{end.words[0], end.words[1], end.words[2]}, k->forward(angles).axis};
-  return nearest(*k, pose, angles);
+  return solutions.nearest(pose, angles);
 }
 
 bool tool_axis_fixed(const post::MachineConfig& machine) {
@@ -70,6 +52,7 @@ bool tool_axis_fixed(const post::MachineConfig& machine) {
 
 std::vector<std::string> approach_blocks(const post::MachineConfig& m, const Approach& a) {
   const auto k = post::make_kinematics(m);
+  const post::RotaryTracker solutions(*k, m);
   const int d = m.controller.decimals;
   const double safe_z = m.post.safe_z.value_or(m.axes[2]->max);
   const std::string f = fmt::format(" F{:.0f}", a.feed);
@@ -80,7 +63,7 @@ std::vector<std::string> approach_blocks(const post::MachineConfig& m, const App
   blocks.emplace_back("G94");
   Joints up = a.to;
   if (a.from) {
-    const Joints retract = nearest(*k, along_axis(k->forward(*a.from), a.clearance), *a.from);
+    const Joints retract = solutions.nearest(along_axis(k->forward(*a.from), a.clearance), *a.from);
     blocks.push_back(move_line("G1", retract, m.axes, {0, 1, 2, 3, 4, 5}, d) + f);
     up = retract;
     up[2] = std::max(safe_z, retract[2]);
@@ -91,7 +74,7 @@ std::vector<std::string> approach_blocks(const post::MachineConfig& m, const App
   for (std::size_t i = 3; i < 6; ++i) {
     turned[i] = a.to[i];
   }
-  const Joints above = nearest(*k, along_axis(k->forward(a.to), a.clearance), a.to);
+  const Joints above = solutions.nearest(along_axis(k->forward(a.to), a.clearance), a.to);
   Joints over = above;
   over[2] = up[2];
   blocks.push_back(move_line("G0", up, m.axes, {2}, d));

@@ -11,14 +11,20 @@ namespace subfeed::cli {
 
 namespace {
 
-// Axis words of one line onto the joints; `tcp` follows G43.4 (on) and G49 (off).
-void apply_words(std::string_view line, LineEnd& end) {
+// Axis words of one line onto the joints; `tcp` follows G43.4 (on) and G49 (off). Whether
+// the line had an axis word.
+bool apply_words(std::string_view line, LineEnd& end) {
   bool comment = false;
+  bool axis_word = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (comment || c == '(') {
       comment = c != ')';
       continue;
+    }
+    const auto axis = post::axis_letters.find(c);
+    if (axis == std::string_view::npos && c != 'G') {
+      continue; // only axis and G words matter: no number parsed for the others
     }
     const std::string rest(line.substr(i + 1, 24));
     char* stop = nullptr;
@@ -26,18 +32,16 @@ void apply_words(std::string_view line, LineEnd& end) {
     if (stop == rest.c_str()) {
       continue;
     }
-    if (const auto axis = post::axis_letters.find(c); axis != std::string_view::npos) {
+    if (axis != std::string_view::npos) {
       end.words[axis] = value;
-    } else if (c == 'G' && std::abs(value - 43.4) < 1e-9) {
+      axis_word = true;
+    } else if (std::abs(value - 43.4) < 1e-9) {
       end.tcp = true;
-    } else if (c == 'G' && std::abs(value - 49.0) < 1e-9) {
+    } else if (std::abs(value - 49.0) < 1e-9) {
       end.tcp = false;
     }
   }
-}
-
-bool moves(std::string_view line) {
-  return line.find_first_of("XYZABC") != std::string_view::npos;
+  return axis_word;
 }
 
 std::optional<double> place_on_move(const ProgramMove& m, const std::vector<double>& position,
@@ -60,6 +64,11 @@ std::optional<double> place_on_move(const ProgramMove& m, const std::vector<doub
 
 } // namespace
 
+bool moves_an_axis(std::string_view line) {
+  LineEnd ignored;
+  return apply_words(line, ignored);
+}
+
 Expected<ProgramWindow> read_window(const std::string& program, long lo, long hi, long extra) {
   std::ifstream in(program);
   if (!in) {
@@ -72,11 +81,11 @@ Expected<ProgramWindow> read_window(const std::string& program, long lo, long hi
   while (std::getline(in, text)) {
     ++w.lines;
     const Joints before = end.words;
-    apply_words(text, end);
+    const bool moves = apply_words(text, end);
     if ((w.lines >= lo - 1 && w.lines <= hi) || w.lines == extra) {
       w.line_end[w.lines] = end;
     }
-    if (w.lines >= lo && w.lines <= hi && moves(text)) {
+    if (w.lines >= lo && w.lines <= hi && moves) {
       w.moves.push_back({w.lines, before, end.words});
     }
   }

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace subfeed::cli {
@@ -31,6 +32,9 @@ struct ProgramWindow {
   std::vector<ProgramMove> moves;   // the motion lines of lo..hi
   std::map<long, LineEnd> line_end; // after each line of lo - 1..hi, and after `extra`
 };
+
+// Whether a program line has an axis word (comments skipped).
+[[nodiscard]] bool moves_an_axis(std::string_view line);
 
 // Lines lo..hi are searched; `extra` (0: none) is a line whose end is wanted too (--from).
 [[nodiscard]] Expected<ProgramWindow> read_window(const std::string& program, long lo, long hi,

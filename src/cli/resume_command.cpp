@@ -331,25 +331,20 @@ Expected<Joints> parse_position(const std::string& text, const post::MachineConf
       return fail(ErrorCode::usage, "'" + item + "' is not a number", {{}, 0, "--at"});
     }
   }
-  Joints j{};
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (m.axes[i]) {
-      if (next >= values.size()) {
-        break;
-      }
-      j[i] = values[next++];
-    }
-  }
-  std::size_t axes = 0;
-  for (const auto& a : m.axes) {
-    axes += a ? 1 : 0;
-  }
+  const auto axes = static_cast<std::size_t>(
+      std::ranges::count_if(m.axes, [](const auto& a) { return a.has_value(); }));
   if (values.size() != axes) {
     return fail(ErrorCode::usage,
                 fmt::format("expected {} positions (one per axis of the machine), got {}", axes,
                             values.size()),
                 {{}, 0, "--at"});
+  }
+  Joints j{};
+  auto next = values.begin();
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    if (m.axes[i]) {
+      j[i] = *next++;
+    }
   }
   return j;
 }
@@ -404,6 +399,20 @@ Expected<Restart> grbl_restart(const Interrupted& r, const ResumeOptions& o,
   }
   SUBFEED_TRY_ASSIGN(s.blocks, restart_blocks(r, o, window, s.after, here));
   return s;
+}
+
+// Asks the controller, once the machine stands still, where it is, and restarts there.
+Expected<Restart> grbl_restart_found(drivers::Transport& link, const Interrupted& r,
+                                     const ResumeOptions& o, Logger& log) {
+  SUBFEED_TRY(wait_until_still(link, o, log));
+  SUBFEED_TRY_ASSIGN(auto status, probe(link, o));
+  SUBFEED_TRY_ASSIGN(status, with_work_offset(link, std::move(status), 40));
+  if (status.state == "Alarm") {
+    return fail(ErrorCode::machine_fault,
+                "the controller is in alarm: home it ($H) or unlock it ($X), then resume again",
+                {o.journal, 0, {}});
+  }
+  return grbl_restart(r, o, program_position(status, log));
 }
 
 Expected<Restart> dnc_restart(const Interrupted& r, const ResumeOptions& o) {
@@ -492,20 +501,13 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
   request.protocol = protocol;
   request.connect_timeout_s = o.connect_timeout_s;
   const auto serial = serial_options_for(r.machine);
-  SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial));
   Restart restart;
-  if (r.dnc) {
+  if (r.dnc) { // the user's words alone: checked before the port is touched
     SUBFEED_TRY_ASSIGN(restart, dnc_restart(r, o));
-  } else {
-    SUBFEED_TRY(wait_until_still(*link.transport, o, log));
-    SUBFEED_TRY_ASSIGN(auto status, probe(*link.transport, o));
-    SUBFEED_TRY_ASSIGN(status, with_work_offset(*link.transport, std::move(status), 40));
-    if (status.state == "Alarm") {
-      return fail(ErrorCode::machine_fault,
-                  "the controller is in alarm: home it ($H) or unlock it ($X), then resume again",
-                  {o.journal, 0, {}});
-    }
-    SUBFEED_TRY_ASSIGN(restart, grbl_restart(r, o, program_position(status, log)));
+  }
+  SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial));
+  if (!r.dnc) {
+    SUBFEED_TRY_ASSIGN(restart, grbl_restart_found(*link.transport, r, o, log));
   }
   show(restart, r, o, log);
   if (!confirmed(o)) {

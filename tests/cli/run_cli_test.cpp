@@ -429,3 +429,61 @@ TEST_CASE("resume after subfeed died with the planner full: a controller that go
   }
   require_exactly_once(program_lines(program), lines_of(log), 16, grbl_restart_block);
 }
+
+TEST_CASE("a DNC resume refuses what the user gave wrong, in one line, before touching the port",
+          "[unit]") {
+  subfeed::testing::TempDir dir;
+  const auto program =
+      dir.write("job.nc", "%\nO1234\nN1 G21 G90\nN2 G0 X1.\nN3 G1 X2. F100.\n%\n").string();
+  const std::string journal = (dir.path() / "job.journal").string();
+  const std::string text = "0 start protocol=fanuc program=" + program +
+                           " link=/dev/pts/9\n5 sent line=4 bytes=10\n"; // "N2 G0 X1." and its LF
+  std::ofstream(journal) << text;
+  const std::string head = source_dir + "/configs/grblhal-xyzac-head.toml";
+  const auto resume = [&](const std::string& machine, std::vector<std::string> flags) {
+    std::vector<std::string> argv{bin,         "resume", journal, "--port", "/nonexistent/tty",
+                                  "--machine", machine,  "--yes"};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    return run_process(argv);
+  };
+  SECTION("--at with a word that is not a number") {
+    const auto r = resume(fanuc, {"--block", "2", "--at", "1,2,x,4,5"});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --at: 'x' is not a number\n");
+  }
+  SECTION("--at with too few positions") {
+    const auto r = resume(fanuc, {"--block", "2", "--at", "1,2"});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --at: expected 5 positions (one per axis of the machine), "
+                   "got 2\n");
+  }
+  SECTION("a head that tilts the tool, without --at") {
+    const auto r = resume(head, {"--block", "2"});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --at: the tool tilts with the head: give the machine "
+                   "position the control shows, so that the retract follows the tool's axis\n");
+  }
+  SECTION("a block that was never sent") {
+    const auto r = resume(fanuc, {"--block", "3"});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err ==
+          "subfeed: error: " + program + ": --block: no block N3 among the 4 lines sent\n");
+  }
+  SECTION("--tcp for drip feed") {
+    const auto r = run_process({bin, "resume", journal, "--tcp", "localhost:1", "--machine", fanuc,
+                                "--block", "2", "--yes"});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err == "subfeed: error: --tcp: DNC drip feed runs over a serial port, not --tcp\n");
+  }
+  CHECK(read_text(journal) == text); // nothing appended
+}
+
+TEST_CASE("a machine state file that is not one is refused, named and left as it was", "[unit]") {
+  subfeed::testing::TempDir dir;
+  const auto state = dir.write("machine.state", "hello\n").string();
+  const auto r = run_process({sim_bin, "grbl", "--machine-state", state});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err ==
+        "subfeed-sim: error: " + state + ":1: not a machine state record (six axis positions)\n");
+  CHECK(read_text(state) == "hello\n");
+}

@@ -9,7 +9,7 @@
 
 #include "sim/byte_channel.hpp"
 #include "sim/delivery_hash.hpp"
-#include "sim/machine_state_file.hpp"
+#include "sim/machine_record.hpp"
 #include "sim/motion_planner.hpp"
 #include "sim/serve_thread.hpp"
 
@@ -49,10 +49,9 @@ struct FanucSimOptions {
   int pause_one_in = 1;
   unsigned seed = 1;
   bool record_executed = false;
-  // Append each block to this file once carried out (ExecutionLog).
-  std::string executed_log;
-  // The machine's position outlives the control (absolute encoders, standard on Fanuc).
-  std::shared_ptr<MachineStateFile> machine_state;
+  // The blocks carried out and the machine's position (absolute encoders, standard on
+  // Fanuc), kept beyond the control.
+  MachineRecordOptions record;
   FanucFaults faults;
 };
 

@@ -9,7 +9,7 @@
 
 #include "sim/byte_channel.hpp"
 #include "sim/delivery_hash.hpp"
-#include "sim/machine_state_file.hpp"
+#include "sim/machine_record.hpp"
 #include "sim/motion_planner.hpp"
 #include "sim/serve_thread.hpp"
 
@@ -59,10 +59,8 @@ struct GrblSimOptions {
   // Keep every executed line in stats (tests); off, memory stays flat however long the job:
   // executed_count and executed_hash still prove delivery.
   bool record_executed = false;
-  // Append each line to this file once the machine has carried it out (ExecutionLog).
-  std::string executed_log;
-  // The machine's position outlives the controller: read at start, written as it moves.
-  std::shared_ptr<MachineStateFile> machine_state;
+  // The lines carried out and the machine's position, kept beyond the controller.
+  MachineRecordOptions record;
 };
 
 struct GrblSimStats {
