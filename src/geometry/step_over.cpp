@@ -1,5 +1,6 @@
 #include "geometry/step_over.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace subfeed::geometry {
@@ -14,7 +15,10 @@ double flat_scallop(double r, double w) {
 }
 
 double contact_step(double r, double h, double rho) {
-  const double x = h * (2.0 * r - h) / (2.0 * (rho + r) * (rho + h));
+  // In a hollow barely wider than the ball x passes 1: neighbouring contacts more than a
+  // quarter turn apart round the centre of curvature still leave less than h, so the step
+  // is the whole width of the hollow's contact circle (x = 1, alpha = 90 deg).
+  const double x = std::min(1.0, h * (2.0 * r - h) / (2.0 * (rho + r) * (rho + h)));
   return 2.0 * std::abs(rho) * std::sqrt(x * (2.0 - x));
 }
 

@@ -62,6 +62,18 @@ TEST_CASE("the curved form stays exact where the textbook form cancels") {
         Approx(std::sqrt(8.0 * r * 1e-4 * 20.0 / 25.0)).epsilon(1e-4));
 }
 
+TEST_CASE("a hollow barely wider than the ball takes a step across its whole contact circle") {
+  // x = h(2r - h) / (2(rho + r)(rho + h)) passes 1 (more than a quarter turn between
+  // contacts): sqrt(x(2 - x)) was NaN there, and a NaN interval poisons the deformation.
+  constexpr double r = 5.0, h = 0.01, rho = -5.004;
+  const double w = contact_step(r, h, rho);
+  REQUIRE(std::isfinite(w));
+  CHECK(w == Approx(2.0 * std::abs(rho)).epsilon(1e-12));
+  CHECK(contact_scallop(r, w, rho) <= h);
+  CHECK(std::isfinite(cl_step(r, h, rho)));
+  CHECK(cl_step(r, h, rho) > 0.0);
+}
+
 TEST_CASE("ball centres spread on convex and crowd on concave surfaces") {
   constexpr double r = 5.0, h = 0.02;
   CHECK(cl_step(r, h, 20.0) == Approx(contact_step(r, h, 20.0) * 25.0 / 20.0));

@@ -16,7 +16,8 @@ namespace subfeed::geometry {
 [[nodiscard]] double flat_scallop(double ball_radius, double step);
 
 // Curved surface: chord between neighbouring contact points on the design surface for a
-// scallop h, and its inverse.
+// scallop h, and its inverse. In a hollow barely wider than the ball (x > 1) the step is
+// the hollow's whole contact circle, 2|rho|.
 [[nodiscard]] double contact_step(double ball_radius, double scallop, double rho);
 [[nodiscard]] double contact_scallop(double ball_radius, double step, double rho);
 
