@@ -3,6 +3,7 @@
 
 #include "command.hpp"
 #include "plan_flags.hpp"
+#include "plan_progress.hpp"
 #include "plan_report.hpp"
 
 #include "cl/cl_writer.hpp"
@@ -29,26 +30,34 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   const double radius = options.ball_radius;
   SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_obj(o.cage));
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.plan.level));
-  SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(cage, surface, options));
+  const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
+  PlanProgress progress(terminal);
+  progress.meshing();
+  auto prepared = geometry::ToolpathPlanner::prepare(
+      cage, surface, options, [&](int solve, int most) { progress.solve(solve, most); });
+  if (!prepared) {
+    progress.finish();
+    return std::unexpected(prepared.error());
+  }
+  auto& planner = *prepared;
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cage).replace_extension(".cl").string() : o.output;
   cl::ClHeader header{
       std::filesystem::path(o.cage).stem().string(), {2 * radius, radius}, !options.fixed_axis};
-  SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
-  const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
-  SUBFEED_TRY(planner.run(
+  auto created = cl::ClWriter::create(output, header);
+  if (!created) {
+    progress.finish();
+    return std::unexpected(created.error());
+  }
+  auto& writer = *created;
+  const auto cut = planner.run(
       [&writer](const cl::ClPose& pose) -> Expected<void> {
         writer.write(pose);
         return {};
       },
-      [&](long plane, long planes) {
-        if (terminal && plane % 16 == 0) {
-          std::fprintf(stderr, "\rplanning: plane %ld of %ld", plane, planes);
-        }
-      }));
-  if (terminal) {
-    std::fprintf(stderr, "\r\033[K");
-  }
+      [&](long plane, long planes) { progress.plane(plane, planes); });
+  progress.finish();
+  SUBFEED_TRY(cut);
   SUBFEED_TRY(writer.finish());
   const auto& s = planner.summary();
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,

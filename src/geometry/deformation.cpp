@@ -109,8 +109,8 @@ Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points, const Eige
 Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
                                      const std::vector<std::array<int, 3>>& triangles,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals,
-                                     int max_iterations, double insertion_margin,
-                                     double allowance) {
+                                     int max_iterations, double insertion_margin, double allowance,
+                                     const std::function<void(int, int)>& on_solve) {
   Deformation d = iso_planar(c, s, intervals);
   const int n = static_cast<int>(c.size());
   const auto edges = mesh_edges(triangles);
@@ -129,6 +129,9 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   std::vector<double> deformed;
   double cheapest = std::numeric_limits<double>::infinity();
   for (d.iterations = 1; d.iterations <= max_iterations; ++d.iterations) {
+    if (on_solve) {
+      on_solve(d.iterations, max_iterations);
+    }
     rhs.setZero();
     for (const auto& e : edges) {
       const auto ui = static_cast<std::size_t>(e.a), uj = static_cast<std::size_t>(e.b);

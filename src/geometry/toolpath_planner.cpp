@@ -36,7 +36,8 @@ ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh)
     : options_(std::move(options)), mesh_(std::move(mesh)) {}
 
 Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const LimitSurface& surface,
-                                                   const PlanOptions& options) {
+                                                   const PlanOptions& options,
+                                                   const SolveProgress& progress) {
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
   const auto rates = rates_for_tolerance(surface, chord, options.max_rate);
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
@@ -61,7 +62,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     SUBFEED_TRY_ASSIGN(planner.deformation_,
                        deform_cl_mesh(planner.cl_points_, m.triangles, planner.s_, intervals,
                                       options.refine_iterations, insertion_margin,
-                                      options.spacing_allowance));
+                                      options.spacing_allowance, progress));
   }
   auto& s = planner.summary_;
   s.rate = m.rate;

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace subfeed::geometry {
@@ -44,12 +45,11 @@ struct Deformation {
   double worst_ratio = 0.0; // largest measured/needed spacing of the kept solve
 };
 
-[[nodiscard]] Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
-                                                   const std::vector<std::array<int, 3>>& triangles,
-                                                   const Eigen::Vector3d& s,
-                                                   const PassIntervals& intervals,
-                                                   int max_iterations, double insertion_margin,
-                                                   double allowance);
+[[nodiscard]] Expected<Deformation>
+deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
+               const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
+               const PassIntervals& intervals, int max_iterations, double insertion_margin,
+               double allowance, const std::function<void(int solve, int most)>& on_solve = {});
 
 // The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval, with
 // nothing inserted.

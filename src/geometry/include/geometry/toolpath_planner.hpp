@@ -65,7 +65,7 @@ struct PlanSummary {
   long mesh_triangles = 0;
   long unreachable_vertices = 0;
   std::vector<UnreachableRegion> unreachable_regions; // where they are, largest first
-  double min_interval = 0.0; // mm between planes, over the surface
+  double min_interval = 0.0;                          // mm between planes, over the surface
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space
   int solves = 0;
@@ -84,10 +84,14 @@ class ToolpathPlanner {
 public:
   using Sink = std::function<Expected<void>(const cl::ClPose&)>;
   using Progress = std::function<void(long plane, long planes)>;
+  // During prepare: each deformation solve as it is made (1-based) and the most there may be.
+  using SolveProgress = std::function<void(int solve, int most)>;
 
   // Meshes, offsets, computes intervals and solves the deformation.
-  [[nodiscard]] static Expected<ToolpathPlanner>
-  prepare(const Cage& cage, const LimitSurface& surface, const PlanOptions& options);
+  [[nodiscard]] static Expected<ToolpathPlanner> prepare(const Cage& cage,
+                                                         const LimitSurface& surface,
+                                                         const PlanOptions& options,
+                                                         const SolveProgress& progress = {});
   // Slices plane after plane and hands every pose to `sink` as soon as its pass is done.
   [[nodiscard]] Expected<void> run(const Sink& sink, const Progress& progress = {});
 

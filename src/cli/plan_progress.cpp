@@ -1,0 +1,65 @@
+#include "plan_progress.hpp"
+
+#include <cstdio>
+#include <fmt/format.h>
+
+namespace subfeed::cli {
+
+namespace {
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  return fmt::format("{:02}:{:02}", s / 60, s % 60);
+}
+
+} // namespace
+
+PlanProgress::PlanProgress(bool enabled)
+    : enabled_(enabled), start_(std::chrono::steady_clock::now()), last_shown_(start_) {}
+
+void PlanProgress::show(const std::string& text, bool always) {
+  if (!enabled_) {
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (!always && now - last_shown_ < std::chrono::milliseconds(100)) {
+    return;
+  }
+  last_shown_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  std::fprintf(stderr, "\r\033[Kplanning %s  %s", clock_text(elapsed).c_str(), text.c_str());
+  std::fflush(stderr);
+}
+
+void PlanProgress::meshing() {
+  show("meshing the limit surface", true);
+}
+
+void PlanProgress::solve(int solve, int most) {
+  show(fmt::format("deformation solve {} (at most {})", solve, most), solve == 1);
+}
+
+void PlanProgress::plane(long plane, long planes) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!slicing_) {
+    slicing_ = true;
+    slicing_start_ = now;
+  }
+  const double done = planes > 0 ? static_cast<double>(plane) / static_cast<double>(planes) : 0.0;
+  const double spent = std::chrono::duration<double>(now - slicing_start_).count();
+  const std::string eta = done > 0.02 ? clock_text(spent * (1.0 - done) / done) : "--:--";
+  constexpr int width = 20;
+  const int filled = static_cast<int>(done * width);
+  show(fmt::format("[{}{}] {:5.1f}%  plane {} of {}  ETA {}", std::string(filled, '#'),
+                   std::string(width - filled, '.'), 100.0 * done, plane, planes, eta),
+       plane == 0);
+}
+
+void PlanProgress::finish() {
+  if (enabled_) {
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  }
+}
+
+} // namespace subfeed::cli

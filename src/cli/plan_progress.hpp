@@ -1,0 +1,29 @@
+#pragma once
+// `plan`'s progress on a terminal: one line on stderr, rewritten at most ten times a second,
+// through the planner's stages: meshing, each deformation solve, then the planes cut with
+// the share done and an ETA from the rate so far. Disabled, it writes nothing.
+
+#include <chrono>
+#include <string>
+
+namespace subfeed::cli {
+
+class PlanProgress {
+public:
+  explicit PlanProgress(bool enabled);
+
+  void meshing();
+  void solve(int solve, int most);
+  void plane(long plane, long planes);
+  // Erases the line before the summary.
+  void finish();
+
+private:
+  void show(const std::string& text, bool always);
+
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_, last_shown_, slicing_start_;
+  bool slicing_ = false;
+};
+
+} // namespace subfeed::cli
