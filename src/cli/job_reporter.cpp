@@ -1,5 +1,7 @@
 #include "job_reporter.hpp"
 
+#include "progress_text.hpp"
+
 #include <cstdio>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -82,14 +84,10 @@ void JobReporter::progress(const drivers::StreamProgress& p) {
                 eta_s, p.elapsed_s, json_escape(state).c_str());
     std::fflush(stdout);
   } else if (terminal_) {
-    constexpr int width = 20;
-    const int filled = std::clamp(static_cast<int>(percent / 100.0 * width + 0.5), 0, width);
-    std::fprintf(stderr,
-                 "\r[%s%s] %5.1f%% cut  passes %ld%s  posted %ld  %s %ld  ETA %s%s  %-8s\x1b[K",
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(width - filled), '.').c_str(), percent,
-                 j.passes, j.planned ? "" : "+", j.lines_posted, acks_ ? "acked" : "sent", done_,
-                 clock_text(eta_s).c_str(), j.planned ? "" : "~", state.c_str());
+    std::fprintf(stderr, "\r%s %5.1f%% cut  passes %ld%s  posted %ld  %s %ld  ETA %s%s  %-8s\x1b[K",
+                 progress_bar(percent / 100.0).c_str(), percent, j.passes, j.planned ? "" : "+",
+                 j.lines_posted, acks_ ? "acked" : "sent", done_, clock_text(eta_s).c_str(),
+                 j.planned ? "" : "~", state.c_str());
     shown_ = true;
   }
 }

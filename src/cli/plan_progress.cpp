@@ -1,18 +1,11 @@
 #include "plan_progress.hpp"
 
+#include "progress_text.hpp"
+
 #include <cstdio>
 #include <fmt/format.h>
 
 namespace subfeed::cli {
-
-namespace {
-
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  return fmt::format("{:02}:{:02}", s / 60, s % 60);
-}
-
-} // namespace
 
 PlanProgress::PlanProgress(bool enabled)
     : enabled_(enabled), start_(std::chrono::steady_clock::now()), last_shown_(start_) {}
@@ -48,10 +41,8 @@ void PlanProgress::plane(long plane, long planes) {
   const double done = planes > 0 ? static_cast<double>(plane) / static_cast<double>(planes) : 0.0;
   const double spent = std::chrono::duration<double>(now - slicing_start_).count();
   const std::string eta = done > 0.02 ? clock_text(spent * (1.0 - done) / done) : "--:--";
-  constexpr int width = 20;
-  const int filled = static_cast<int>(done * width);
-  show(fmt::format("[{}{}] {:5.1f}%  plane {} of {}  ETA {}", std::string(filled, '#'),
-                   std::string(width - filled, '.'), 100.0 * done, plane, planes, eta),
+  show(fmt::format("{} {:5.1f}%  plane {} of {}  ETA {}", progress_bar(done), 100.0 * done, plane,
+                   planes, eta),
        plane == 0);
 }
 

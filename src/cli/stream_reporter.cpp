@@ -1,16 +1,12 @@
 #include "stream_reporter.hpp"
 
+#include "progress_text.hpp"
+
 #include <cstdio>
 #include <fmt/format.h>
 #include <unistd.h>
 
 namespace subfeed::cli {
-
-std::string clock_text(double seconds) {
-  const auto s = static_cast<long>(seconds + 0.5);
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
-                   : fmt::format("{:02}:{:02}", s / 60, s % 60);
-}
 
 // JSON string contents: controller messages may carry quotes, backslashes or noise bytes.
 std::string json_escape(std::string_view text) {

@@ -10,8 +10,6 @@
 
 namespace subfeed::cli {
 
-// "mm:ss", or "h:mm:ss" from an hour on.
-[[nodiscard]] std::string clock_text(double seconds);
 // JSON string contents: controller messages may carry quotes, backslashes or noise bytes.
 [[nodiscard]] std::string json_escape(std::string_view text);
 // The controller's state for a display: "Run", "Hold:0", or the link's state for DNC.

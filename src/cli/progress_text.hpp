@@ -1,0 +1,13 @@
+#pragma once
+// Pieces of the one-line progress displays (`send`, `run`, `plan`).
+
+#include <string>
+
+namespace subfeed::cli {
+
+// "mm:ss", or "h:mm:ss" from an hour on.
+[[nodiscard]] std::string clock_text(double seconds);
+// "[#####...............]": `fraction` (0..1, clamped) of 20 cells, to the nearest cell.
+[[nodiscard]] std::string progress_bar(double fraction);
+
+} // namespace subfeed::cli
