@@ -33,31 +33,21 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
   PlanProgress progress(terminal);
   progress.meshing();
-  auto prepared = geometry::ToolpathPlanner::prepare(
-      cage, surface, options, [&](int solve, int most) { progress.solve(solve, most); });
-  if (!prepared) {
-    progress.finish();
-    return std::unexpected(prepared.error());
-  }
-  auto& planner = *prepared;
+  SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(
+                                       cage, surface, options,
+                                       [&](int solve, int most) { progress.solve(solve, most); }));
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cage).replace_extension(".cl").string() : o.output;
   cl::ClHeader header{
       std::filesystem::path(o.cage).stem().string(), {2 * radius, radius}, !options.fixed_axis};
-  auto created = cl::ClWriter::create(output, header);
-  if (!created) {
-    progress.finish();
-    return std::unexpected(created.error());
-  }
-  auto& writer = *created;
-  const auto cut = planner.run(
+  SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
+  SUBFEED_TRY(planner.run(
       [&writer](const cl::ClPose& pose) -> Expected<void> {
         writer.write(pose);
         return {};
       },
-      [&](long plane, long planes) { progress.plane(plane, planes); });
+      [&](long plane, long planes) { progress.plane(plane, planes); }));
   progress.finish();
-  SUBFEED_TRY(cut);
   SUBFEED_TRY(writer.finish());
   const auto& s = planner.summary();
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,

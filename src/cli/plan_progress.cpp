@@ -19,6 +19,7 @@ void PlanProgress::show(const std::string& text, bool always) {
     return;
   }
   last_shown_ = now;
+  shown_ = true;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   std::fprintf(stderr, "\r\033[Kplanning %s  %s", clock_text(elapsed).c_str(), text.c_str());
   std::fflush(stderr);
@@ -46,10 +47,15 @@ void PlanProgress::plane(long plane, long planes) {
        plane == 0);
 }
 
+PlanProgress::~PlanProgress() {
+  finish();
+}
+
 void PlanProgress::finish() {
-  if (enabled_) {
+  if (shown_) {
     std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
+    shown_ = false;
   }
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // `plan`'s progress on a terminal: one line on stderr, rewritten at most ten times a second,
 // through the planner's stages: meshing, each deformation solve, then the planes cut with
-// the share done and an ETA from the rate so far. Disabled, it writes nothing.
+// the share done and an ETA from the rate so far. Disabled, it writes nothing. The line is
+// erased by finish() or, on an early return, by the destructor, so an error line that
+// follows starts clean.
 
 #include <chrono>
 #include <string>
@@ -11,6 +13,9 @@ namespace subfeed::cli {
 class PlanProgress {
 public:
   explicit PlanProgress(bool enabled);
+  ~PlanProgress();
+  PlanProgress(const PlanProgress&) = delete;
+  PlanProgress& operator=(const PlanProgress&) = delete;
 
   void meshing();
   void solve(int solve, int most);
@@ -24,6 +29,7 @@ private:
   bool enabled_;
   std::chrono::steady_clock::time_point start_, last_shown_, slicing_start_;
   bool slicing_ = false;
+  bool shown_ = false; // a line is on the terminal
 };
 
 } // namespace subfeed::cli

@@ -110,7 +110,7 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
                                      const std::vector<std::array<int, 3>>& triangles,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals,
                                      int max_iterations, double insertion_margin, double allowance,
-                                     const std::function<void(int, int)>& on_solve) {
+                                     const SolveProgress& on_solve) {
   Deformation d = iso_planar(c, s, intervals);
   const int n = static_cast<int>(c.size());
   const auto edges = mesh_edges(triangles);

@@ -34,6 +34,9 @@ struct PlaneSpacing {
 };
 [[nodiscard]] PlaneSpacing space_planes(const std::vector<double>& deformed, double reference);
 
+// Told of each solve as it is made (1-based) and the most there may be.
+using SolveProgress = std::function<void(int solve, int most)>;
+
 struct Deformation {
   std::vector<double> xi;       // s . c per CL vertex, mm
   std::vector<double> deformed; // xi' per CL vertex, mm
@@ -49,7 +52,7 @@ struct Deformation {
 deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
                const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
                const PassIntervals& intervals, int max_iterations, double insertion_margin,
-               double allowance, const std::function<void(int solve, int most)>& on_solve = {});
+               double allowance, const SolveProgress& on_solve = {});
 
 // The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval, with
 // nothing inserted.

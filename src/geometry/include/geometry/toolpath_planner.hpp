@@ -84,10 +84,8 @@ class ToolpathPlanner {
 public:
   using Sink = std::function<Expected<void>(const cl::ClPose&)>;
   using Progress = std::function<void(long plane, long planes)>;
-  // During prepare: each deformation solve as it is made (1-based) and the most there may be.
-  using SolveProgress = std::function<void(int solve, int most)>;
 
-  // Meshes, offsets, computes intervals and solves the deformation.
+  // Meshes, offsets, computes intervals and solves the deformation (`progress`: each solve).
   [[nodiscard]] static Expected<ToolpathPlanner> prepare(const Cage& cage,
                                                          const LimitSurface& surface,
                                                          const PlanOptions& options,
