@@ -29,11 +29,14 @@ PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h, const 
     const double sn = std::clamp(s.dot(n), -1.0, 1.0);
     const Eigen::Vector3d across = s - sn * n;
     double spacing = flat;
-    if (across.norm() > 1e-9) {
+    // The ball fits only where the surface bends toward it by less than 1/r in every
+    // direction, not only across the passes: a hollow that is narrow along the passes folds
+    // the CL surface there as well.
+    if (mesh.concave_curvature(static_cast<int>(i)) * r * (1.0 + 1e-9) >= 1.0) {
+      out.reachable[i] = 0; // the ball is wider than the hollow
+    } else if (across.norm() > 1e-9) {
       const double rho = mesh.radius_along(static_cast<int>(i), across.normalized());
-      if (rho < 0.0 && -rho <= r * (1.0 + 1e-9)) {
-        out.reachable[i] = 0; // the ball is wider than the hollow
-      } else if (std::abs(rho) < flat_radius) {
+      if (std::abs(rho) < flat_radius) {
         spacing = cl_step(r, h, rho);
       }
     }

@@ -36,6 +36,14 @@ double SurfaceMesh::radius_along(int i, const Eigen::Vector3d& t) const {
   return -1.0 / kappa;
 }
 
+double SurfaceMesh::concave_curvature(int i) const {
+  // W maps the tangent plane into itself and the normal to zero, so its largest eigenvalue
+  // is the largest normal curvature over tangent directions (or 0 where all are convex).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(curvature[static_cast<std::size_t>(i)],
+                                                             Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().maxCoeff();
+}
+
 std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_tolerance,
                                      int max_rate) {
   std::vector<int> rates(static_cast<std::size_t>(surface.face_count()), 0);

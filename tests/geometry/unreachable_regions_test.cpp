@@ -64,4 +64,27 @@ TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
   CHECK(std::abs(r.centroid.y()) < 1.0);
   CHECK(r.low.x() < 0.0);
   CHECK(r.high.x() > 0.0);
+  // The bowl is round: the ball misses it as far along the passes as across them.
+  const Eigen::Vector3d size = r.high - r.low;
+  CHECK(std::abs(size.x() - size.y()) < 0.1);
+}
+
+TEST_CASE("a trough narrower than the ball along the passes is found too") {
+  // z = 0.25 x^2, flat along y; the passes run along x (planes across y), so the radius
+  // across them is infinite, but along them it is 2 mm at the bottom: a 3 mm ball misses
+  // the strip where 0.5 / (1 + x^2 / 4)^1.5 >= 1/3, |x| <= 1.114 mm, the trough's length.
+  const auto cage = subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0);
+  const auto surface = LimitSurface::build(cage);
+  REQUIRE(surface);
+  PlanOptions options;
+  options.ball_radius = 3.0;
+  options.scallop = 0.01;
+  const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
+  REQUIRE(planner);
+  const auto& s = planner->summary();
+  REQUIRE(s.unreachable_regions.size() == 1);
+  const auto& r = s.unreachable_regions.front();
+  CHECK(r.high.x() == Approx(1.114).margin(0.1));
+  CHECK(r.low.x() == Approx(-1.114).margin(0.1));
+  CHECK(r.high.y() - r.low.y() > 10.0);
 }

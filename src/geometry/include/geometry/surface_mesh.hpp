@@ -29,6 +29,9 @@ struct SurfaceMesh {
   // Signed radius of normal curvature along unit tangent t at vertex i: > 0 convex, < 0
   // concave, +-infinity flat.
   [[nodiscard]] double radius_along(int i, const Eigen::Vector3d& t) const;
+  // The largest normal curvature toward the tool at vertex i over all tangent directions
+  // (1/mm, > 0 where some direction is concave, else <= 0).
+  [[nodiscard]] double concave_curvature(int i) const;
 };
 
 // W for one limit sample (see SurfaceMesh::curvature).
