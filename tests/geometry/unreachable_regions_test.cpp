@@ -44,10 +44,9 @@ TEST_CASE("blocked vertices sharing triangle edges form one region; apart, two")
   }
 }
 
-TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
-  // z = 0.25 (x^2 + y^2): radius 2 mm at the bottom, growing outward; a 3 mm ball reaches
-  // only where the radius across the passes has grown past 3 mm.
-  const auto cage = subfeed::testing::grid_cage(9, 2.0, 0.25, 0.25);
+namespace {
+
+PlanSummary summary_under_3mm_ball(const Cage& cage) {
   const auto surface = LimitSurface::build(cage);
   REQUIRE(surface);
   PlanOptions options;
@@ -55,7 +54,15 @@ TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
   options.scallop = 0.01;
   const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
   REQUIRE(planner);
-  const auto& s = planner->summary();
+  return planner->summary();
+}
+
+} // namespace
+
+TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
+  // z = 0.25 (x^2 + y^2): radius 2 mm at the bottom, growing outward; a 3 mm ball reaches
+  // only where the radius across the passes has grown past 3 mm.
+  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.25));
   REQUIRE(s.unreachable_vertices > 0);
   REQUIRE(s.unreachable_regions.size() == 1);
   const auto& r = s.unreachable_regions.front();
@@ -73,15 +80,7 @@ TEST_CASE("a trough narrower than the ball along the passes is found too") {
   // z = 0.25 x^2, flat along y; the passes run along x (planes across y), so the radius
   // across them is infinite, but along them it is 2 mm at the bottom: a 3 mm ball misses
   // the strip where 0.5 / (1 + x^2 / 4)^1.5 >= 1/3, |x| <= 1.114 mm, the trough's length.
-  const auto cage = subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0);
-  const auto surface = LimitSurface::build(cage);
-  REQUIRE(surface);
-  PlanOptions options;
-  options.ball_radius = 3.0;
-  options.scallop = 0.01;
-  const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
-  REQUIRE(planner);
-  const auto& s = planner->summary();
+  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0));
   REQUIRE(s.unreachable_regions.size() == 1);
   const auto& r = s.unreachable_regions.front();
   CHECK(r.high.x() == Approx(1.114).margin(0.1));
