@@ -82,7 +82,18 @@ private:
     return 1 + options_.data_bits + (options_.parity == 'N' ? 0 : 1) + options_.stop_bits;
   }
 
+  // Checked before each read: what the link holds when the latency window closes was
+  // written inside it.
+  void close_latency_window() {
+    const std::lock_guard lock(mutex_);
+    if (!latency_closed_ && Clock::now() >= latency_ends_) {
+      latency_closed_ = true;
+      in_flight_ = channel_->unread();
+    }
+  }
+
   void pump_input() {
+    close_latency_window();
     std::size_t allowed = 4096;
     if (options_.baud > 0) {
       const auto now = Clock::now();
@@ -117,10 +128,11 @@ private:
     } else {
       tokens_ -= static_cast<double>(*n);
     }
-    ++read_batch_;
     for (std::size_t i = 0; i < *n; ++i) {
+      batch_left_ = *n - i - 1;
       on_byte(static_cast<unsigned char>(buffer[i]));
     }
+    batch_left_ = 0;
   }
 
   void on_connect() {
@@ -161,10 +173,10 @@ private:
     if (!stats_.alarm.empty()) {
       return;
     }
-    // Characters read together with the one that filled the buffer were on the wire before
-    // the DC3 could leave; only those read after it count against the sender.
-    if (xoff_active_ && read_batch_ > xoff_batch_ && ++after_xoff_ > options_.overrun_tolerance) {
-      raise("087 overrun: " + std::to_string(after_xoff_) + " characters after DC3");
+    if (xoff_active_ && !in_flight()) {
+      if (++after_xoff_ > options_.overrun_tolerance) {
+        raise("087 overrun: " + std::to_string(after_xoff_) + " characters after DC3");
+      }
     }
     stats_.max_after_xoff = std::max(stats_.max_after_xoff, after_xoff_);
     if (!iso840(c)) {
@@ -173,10 +185,10 @@ private:
       raise("TH character '" + shown + "'");
       return;
     }
-    // Once DC3 is out, the count above judges the sender. Characters read in the same batch
-    // as the one that reached the high-water mark arrived while this control (a thread, not
-    // a UART interrupt) was not looking: a real control would have sent DC3 as the mark was
-    // passed, so they may overfill the buffer here without an alarm.
+    // Once DC3 is out, the count above judges the sender. What was already in flight when
+    // it left arrived while this control (a thread, not a UART interrupt) was not looking:
+    // a real control would have sent DC3 as the mark was passed, so those characters may
+    // overfill the buffer here without an alarm.
     if (static_cast<int>(buffer_.size()) >= options_.buffer && !xoff_active_) {
       raise("087 overrun: buffer full");
       return;
@@ -188,10 +200,29 @@ private:
     }
   }
 
+  // Whether this character, read while DC3 holds, was on its way before the sender could
+  // know: written before the DC3 left, or within the link's latency after it.
+  bool in_flight() {
+    if (!latency_closed_) {
+      return true;
+    }
+    if (in_flight_ == 0) {
+      return false;
+    }
+    --in_flight_;
+    return true;
+  }
+
+  // The DC3 leaves at once, as from a UART interrupt. What the sender had written by then,
+  // read or not (the rest of this read, and the pty's backlog when this thread ran late),
+  // was on the wire before the DC3 and is not held against it.
   void send_xoff() {
     out_ += dc3;
+    flush_output();
     xoff_active_ = true;
-    xoff_batch_ = read_batch_;
+    in_flight_ = batch_left_ + channel_->unread();
+    latency_ends_ = Clock::now() + options_.link_latency;
+    latency_closed_ = options_.link_latency.count() == 0;
     after_xoff_ = 0;
     ++stats_.xoff_sent;
   }
@@ -301,8 +332,10 @@ private:
   Clock::time_point stalled_until_{};
   double tokens_ = 0.0;
   int after_xoff_ = 0;
-  long read_batch_ = 0; // reads from the wire so far
-  long xoff_batch_ = 0; // the read during which the last DC3 was queued
+  std::size_t batch_left_ = 0; // bytes of the current read after the one being handled
+  std::size_t in_flight_ = 0;  // bytes written before the last DC3 left, not yet handled
+  Clock::time_point latency_ends_{}; // the last DC3 left, plus the link's latency
+  bool latency_closed_ = true;
   bool connected_ = false;
   bool framing_checked_ = false;
   bool xoff_active_ = false;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <thread>
 #include <unistd.h>
@@ -79,6 +80,13 @@ Expected<std::size_t> Pty::read(std::span<char> buffer, std::chrono::millisecond
     return os_failure("read", slave_path_);
   }
   return static_cast<std::size_t>(n);
+}
+
+std::size_t Pty::unread() const {
+  int n = 0;
+  return master_.valid() && ::ioctl(master_.get(), FIONREAD, &n) == 0 && n > 0
+             ? static_cast<std::size_t>(n)
+             : 0;
 }
 
 Expected<void> Pty::write_all(std::span<const char> bytes) {

@@ -159,6 +159,7 @@ struct FanucCommand {
   std::string framing = "7E2";
   long stuck_xoff_at = 0, lose_xon_after = 0, drop_at = 0;
   long max_pause_ms = 0;
+  long link_latency_ms = 0;
 };
 
 void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
@@ -173,6 +174,10 @@ void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
   cmd.add_option("--overrun-tolerance", c.sim.overrun_tolerance,
                  "Characters after DC3 before alarm 087")
       ->check(CLI::Range(0, 100000));
+  cmd.add_option("--link-latency", c.link_latency_ms,
+                 "Characters written within MS after DC3 are in flight, not an overrun")
+      ->type_name("MS")
+      ->check(CLI::Range(0, 60000));
   cmd.add_flag("--request-tape", c.sim.request_tape,
                "Ask for the tape (DC1) when a sender connects");
   cmd.add_flag("--eia", c.sim.eia_cr, "Blocks end with CR (EIA option) instead of LF");
@@ -208,6 +213,7 @@ int serve_fanuc(FanucCommand& c, const sigset_t& signals) {
   c.sim.faults.lose_xon_after_block = positive(c.lose_xon_after);
   c.sim.faults.drop_at_block = positive(c.drop_at);
   c.sim.max_block_pause = std::chrono::milliseconds(c.max_pause_ms);
+  c.sim.link_latency = std::chrono::milliseconds(c.link_latency_ms);
   c.sim.pause_one_in = 20;
   if (!open_machine_state(c.machine_state, c.sim.record.machine_state)) {
     return 2;

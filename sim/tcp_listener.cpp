@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <thread>
 #include <unistd.h>
@@ -69,6 +70,13 @@ Expected<std::size_t> TcpListener::read(std::span<char> buffer, std::chrono::mil
     return 0;
   }
   return static_cast<std::size_t>(n);
+}
+
+std::size_t TcpListener::unread() const {
+  int n = 0;
+  return peer_.valid() && ::ioctl(peer_.get(), FIONREAD, &n) == 0 && n > 0
+             ? static_cast<std::size_t>(n)
+             : 0;
 }
 
 Expected<void> TcpListener::write_all(std::span<const char> bytes) {

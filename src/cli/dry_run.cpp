@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <fstream>
+#include <thread>
 
 namespace subfeed::cli {
 
@@ -53,6 +54,26 @@ Expected<Delivery> expected_delivery(const std::filesystem::path& nc, bool fanuc
   return d;
 }
 
+// The control's account once it has read the whole tape: the sender is done when the last
+// character has left, but a control thread that ran late still has some on the wire. It
+// is waited for while it keeps taking blocks, up to 60 s without one (a long move at a slow
+// --sim-speed holds the last blocks back).
+sim::FanucSimStats settled(const sim::FanucSim& control) {
+  using namespace std::chrono_literals;
+  auto stats = control.stats();
+  auto last_progress = std::chrono::steady_clock::now();
+  while (!stats.program_ended && stats.alarm.empty() &&
+         std::chrono::steady_clock::now() - last_progress < 60s) {
+    std::this_thread::sleep_for(20ms);
+    const auto now = control.stats();
+    if (now.blocks_received != stats.blocks_received) {
+      last_progress = std::chrono::steady_clock::now();
+    }
+    stats = now;
+  }
+  return stats;
+}
+
 std::string at(const post::Finding& f) {
   return f.line > 0 ? fmt::format(" (line {})", f.line) : "";
 }
@@ -65,7 +86,7 @@ Expected<void> verify_dry_run(const Link& link, const DryRunFiles& files,
   const bool fanuc = link.control != nullptr;
   Delivery ran;
   if (fanuc) {
-    const auto s = link.control->stats();
+    const auto s = settled(*link.control);
     ran = {s.executed_count, s.executed_hash};
   } else if (link.simulator) {
     const auto s = link.simulator->stats();

@@ -108,14 +108,15 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
   const auto summary = stream(o, request.sim_baud, machine, link, job, *inbox, observer);
   journal.end(summary);
   if (!summary) {
-    reporter.failed(summary.error());
+    const Error error = with_simulated_alarm(summary.error(), link);
+    reporter.failed(error);
     job.detach();
     if (const auto done = job.finish(); done) {
       log.warning(fmt::format("the program is complete in {}: `subfeed resume {}` continues "
                               "the job",
                               files.nc.string(), journal_path(o).string()));
     }
-    return std::unexpected(summary.error());
+    return std::unexpected(error);
   }
   SUBFEED_TRY_ASSIGN(const auto totals, job.finish());
   reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));

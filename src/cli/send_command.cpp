@@ -173,8 +173,9 @@ Expected<void> send(SendOptions o, Logger& log) {
           : drivers::stream_grbl(*link.transport, source, o.stream, inbox.get(), observer);
   journal.end(summary);
   if (!summary) {
-    reporter.failed(summary.error());
-    return std::unexpected(summary.error());
+    const Error error = with_simulated_alarm(summary.error(), link);
+    reporter.failed(error);
+    return std::unexpected(error);
   }
   reporter.finished(*summary, link.baud, drivers::bits_per_character(serial));
   return {};

@@ -356,11 +356,16 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
   const std::string first_log = (dir.path() / "first.log").string();
   const std::string second_log = (dir.path() / "second.log").string();
   const std::string state = (dir.path() / "machine.state").string();
-  const auto control = [&](const std::string& log) {
-    return std::vector<std::string>{sim_bin, "fanuc", "--baud",          "0",  "--speed", "10",
-                                    "--log", log,     "--machine-state", state};
+  // 50 ms of link latency: this is about resuming, not the sender's DC3 reaction, and a
+  // pty on a loaded machine can take longer than 10 characters at 115200 baud to hand the
+  // DC3 over. The first control runs slowly enough that the lazy planner keeps its buffer
+  // full even on a loaded machine: when it is killed it is inside a block it was sent.
+  const auto control = [&](const std::string& log, const char* speed) {
+    return std::vector<std::string>{sim_bin, "fanuc", "--baud",          "0",  "--speed", speed,
+                                    "--log", log,     "--machine-state", state,
+                                    "--link-latency", "50"};
   };
-  BackgroundProcess first(control(first_log));
+  BackgroundProcess first(control(first_log, "3"));
   kill_controller_mid_job(first, base, machine);
   std::vector<std::string> program; // the blocks the control runs: all but '%' and O
   for (const auto& line : lines_of(base + ".nc")) {
@@ -375,7 +380,7 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
   const std::string shown = program[ran_first.size()]; // "N123 ..."
   REQUIRE(shown.front() == 'N');
   const std::string block = shown.substr(1, shown.find(' ') - 1);
-  BackgroundProcess second(control(second_log));
+  BackgroundProcess second(control(second_log, "10"));
   const std::string port2 = second.first_line();
   const auto resumed =
       run_process({bin, "resume", base + ".journal", "--port", port2, "--block", block, "--yes"});

@@ -20,6 +20,9 @@ public:
                                                    std::chrono::milliseconds timeout) = 0;
   [[nodiscard]] virtual Expected<void> write_all(std::span<const char> bytes) = 0;
   [[nodiscard]] virtual bool connected() const = 0;
+  // Bytes that have arrived and no read has taken yet: the sender wrote them before
+  // anything the simulator writes now can reach it.
+  [[nodiscard]] virtual std::size_t unread() const = 0;
   // Drops the link as an unplugged cable would; nothing more is read or written.
   virtual void close() noexcept = 0;
   // What a sender connects to: a tty path or host:port.

@@ -2,7 +2,8 @@
 // A simulated Fanuc-style control reading a program by DNC drip feed (PROTOCOLS.md): a
 // receive buffer drained by an execution model (block time from feed and length), DC3
 // (XOFF) at the high-water mark and DC1 (XON) at the low-water mark, an overrun alarm when
-// more than `overrun_tolerance` characters arrive after DC3 (alarm 087 on many controls), a
+// the sender writes more than `overrun_tolerance` characters after the DC3 has left
+// (alarm 087 on many controls; what was already in the pty is not the sender's fault), a
 // TH alarm for characters outside ISO 840 or stop bits that differ from the control's (a
 // pty carries no data-bit or parity setting: Linux forces 8N on ptys), and a record of the
 // executed blocks. It shares no code with the sender.
@@ -35,6 +36,10 @@ struct FanucSimOptions {
   int high_water = 192; // DC3 at this fill
   int low_water = 64;   // DC1 at this fill, after a DC3
   int overrun_tolerance = 10;
+  // How long the link may take to carry a DC3 to the sender: characters the sender
+  // writes within it are in flight, not an overrun. A UART carries it within a character
+  // (0); a pty on a loaded machine, or a USB adapter's latency timer, takes milliseconds.
+  std::chrono::milliseconds link_latency{0};
   int baud = 9600; // emulated wire speed; 0 = unlimited
   int data_bits = 7;
   char parity = 'E'; // 'N', 'E', 'O'
@@ -62,7 +67,7 @@ struct FanucSimStats {
   long blocks_received = 0;
   long xoff_sent = 0;
   long xon_sent = 0;
-  int max_after_xoff = 0; // most characters that arrived after a DC3
+  int max_after_xoff = 0; // most characters written after a DC3 had left
   int max_fill = 0;
   bool program_started = false; // '%' leader seen
   bool program_ended = false;   // '%' trailer seen

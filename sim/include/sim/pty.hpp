@@ -26,13 +26,14 @@ public:
   // Bytes that arrived within `timeout`; zero on timeout and while no one has the slave
   // side open. An error only on an I/O failure.
   [[nodiscard]] Expected<std::size_t> read(std::span<char> buffer,
-                                           std::chrono::milliseconds timeout);
+                                           std::chrono::milliseconds timeout) override;
   [[nodiscard]] Expected<void> write_all(std::span<const char> bytes) override;
 
   // Hangs up: the slave side sees the port vanish.
   void close() noexcept override { master_.reset(); }
   [[nodiscard]] std::string address() const override { return slave_path_; }
   [[nodiscard]] bool connected() const override { return connected_; }
+  [[nodiscard]] std::size_t unread() const override;
 
 private:
   Pty(int master, std::string slave_path) : master_(master), slave_path_(std::move(slave_path)) {}

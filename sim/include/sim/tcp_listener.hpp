@@ -22,6 +22,7 @@ public:
   }
   [[nodiscard]] std::string address() const override { return address_; }
   [[nodiscard]] bool connected() const override { return peer_.valid(); }
+  [[nodiscard]] std::size_t unread() const override;
 
 private:
   TcpListener(int listen_fd, std::string address)
