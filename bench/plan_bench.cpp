@@ -14,6 +14,7 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <sstream>
@@ -35,11 +36,13 @@ struct PlanRun {
 };
 
 PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, double radius,
-             double scallop, bool baseline, const std::filesystem::path& out) {
+             double scallop, bool baseline, const std::filesystem::path& out,
+             bool choose_direction = false) {
   geometry::PlanOptions options;
   options.ball_radius = radius;
   options.scallop = scallop;
   options.baseline = baseline;
+  options.choose_direction = choose_direction;
   PlanRun run;
   run.seconds = bench::best_seconds(1, [&] {
     auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options).value();
@@ -101,19 +104,24 @@ void bench_path_lengths(const std::filesystem::path& dir) {
         geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/" + part.name + ".obj")
             .value();
     const auto surface = geometry::LimitSurface::build(cage).value();
-    double length[2] = {0.0, 0.0}, ideal[2] = {0.0, 0.0};
-    for (const bool baseline : {false, true}) {
-      const auto file = dir / (std::string(part.name) + (baseline ? "-baseline.cl" : ".cl"));
-      (void)plan(cage, surface, part.radius, part.scallop, baseline, file);
+    // Feed along X, its --baseline, and the direction chosen (--direction auto).
+    double ratio[3] = {0.0, 0.0, 0.0};
+    for (const int k : {0, 1, 2}) {
+      const auto file = dir / fmt::format("{}-{}.cl", part.name, k);
+      const auto run = plan(cage, surface, part.radius, part.scallop, k == 1, file, k == 2);
       geometry::VerifyOptions verify;
       verify.ball_radius = part.radius;
       verify.scallop_target = part.scallop;
       const auto report = geometry::verify_path(surface, file, verify).value();
-      length[baseline ? 1 : 0] = report.cutting_length;
-      ideal[baseline ? 1 : 0] = report.ideal_length;
+      ratio[k] = report.cutting_length / report.ideal_length;
+      if (k == 2) {
+        std::printf("  %s: --direction auto chose %g deg\n", part.name, run.summary.direction_deg);
+      }
     }
-    bench::report({fmt::format("L/L* {}", part.name), length[0] / ideal[0], "", "--baseline",
-                   length[1] / ideal[1], false});
+    bench::report({fmt::format("L/L* {}, feed X", part.name), ratio[0], "", "--baseline", ratio[1],
+                   false});
+    bench::report({fmt::format("L/L* {}, --direction auto", part.name), ratio[2], "",
+                   "feed X", ratio[0], false});
   }
 }
 

@@ -66,6 +66,15 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                                            1 << s.inserted_depth)
                              : std::string()));
   }
+  if (!s.direction_prices.empty()) {
+    std::string prices;
+    for (const auto& c : s.direction_prices) {
+      prices += fmt::format("{}{:g} deg {:.0f} mm", prices.empty() ? "" : ", ", c.direction_deg,
+                            c.predicted_length);
+    }
+    log.info(fmt::format("  feed direction {:g} deg, chosen by predicted cutting: {}",
+                         s.direction_deg, prices));
+  }
   report_unreachable(s, log);
   return {};
 }

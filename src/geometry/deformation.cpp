@@ -107,6 +107,7 @@ Deformation iso_planar(const std::vector<Eigen::Vector3d>& cl_points, const Eige
 }
 
 Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
+                                     const std::vector<Eigen::Vector3d>& path_points,
                                      const std::vector<std::array<int, 3>>& triangles,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals,
                                      int max_iterations, double insertion_margin, double allowance,
@@ -145,7 +146,8 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
     const Eigen::VectorXd x = solver.solve(rhs);
     deformed.assign(x.data(), x.data() + n);
     const auto planes = space_planes(deformed, d.reference);
-    const auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
+    auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
+    measured.level_length = level_lengths(path_points, triangles, deformed, planes.step);
     auto insertion = pass_insertion(c, triangles, measured, insertion_margin, allowance);
     if (insertion.predicted_length < cheapest) {
       cheapest = insertion.predicted_length;

@@ -47,6 +47,18 @@ Eigen::Vector3d level_gradient(const Eigen::Vector3d& ci, const Eigen::Vector3d&
   return (d1 * e2.cross(normal) + d2 * normal.cross(e1)) / area2;
 }
 
+std::vector<double> level_lengths(const std::vector<Eigen::Vector3d>& p,
+                                  const std::vector<std::array<int, 3>>& triangles,
+                                  const std::vector<double>& deformed, double step) {
+  std::vector<double> out(triangles.size(), 0.0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto [i, j, k] = corners(triangles[t]);
+    const auto g = level_gradient(p[i], p[j], p[k], deformed[i], deformed[j], deformed[k]);
+    out[t] = 0.5 * (p[j] - p[i]).cross(p[k] - p[i]).norm() * g.norm() / step;
+  }
+  return out;
+}
+
 SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
                              const std::vector<std::array<int, 3>>& triangles,
                              const std::vector<double>& deformed, double step,

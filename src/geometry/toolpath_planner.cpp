@@ -43,9 +43,6 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
   ToolpathPlanner planner(options, std::move(mesh));
   planner.chord_tolerance_ = chord;
-  const double a = options.direction_deg * std::numbers::pi / 180.0;
-  planner.feed_dir_ = {std::cos(a), std::sin(a), 0.0};
-  planner.s_ = Eigen::Vector3d::UnitZ().cross(planner.feed_dir_);
   const auto& m = planner.mesh_;
   const double r = options.ball_radius;
   for (int i = 0; i < m.vertex_count(); ++i) {
@@ -53,6 +50,22 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
                                  r * m.normals[static_cast<std::size_t>(i)]);
   }
   planner.index_triangles();
+  // A tool along the normal cuts with its tip on the design surface; a vertical one
+  // follows the ball centres (shifted down by r).
+  const auto& path_points = options.fixed_axis ? planner.cl_points_ : m.points;
+  double direction = options.direction_deg;
+  if (options.choose_direction) {
+    const DirectionPricing pricing{r, options.scallop, std::min(options.refine_iterations, 4),
+                                   options.spacing_allowance, options.insertion_margin};
+    SUBFEED_TRY_ASSIGN(auto choice,
+                       choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
+    direction = choice.direction_deg;
+    planner.summary_.direction_prices = std::move(choice.prices);
+  }
+  planner.summary_.direction_deg = direction;
+  const double a = direction * std::numbers::pi / 180.0;
+  planner.feed_dir_ = {std::cos(a), std::sin(a), 0.0};
+  planner.s_ = slicing_normal_for(direction);
   const auto intervals = pass_intervals(m, r, options.scallop, planner.s_);
   const double widest = std::ranges::max(intervals.cl_spacing);
   const double insertion_margin = options.insertion_margin.value_or(widest);
@@ -60,7 +73,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
   } else {
     SUBFEED_TRY_ASSIGN(planner.deformation_,
-                       deform_cl_mesh(planner.cl_points_, m.triangles, planner.s_, intervals,
+                       deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_, intervals,
                                       options.refine_iterations, insertion_margin,
                                       options.spacing_allowance, progress));
   }

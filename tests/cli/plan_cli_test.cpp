@@ -37,9 +37,16 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
       run_process({bin, "post", cl, "--machine", source_dir + "/configs/grblhal-xyzac-trt.toml",
                    "-o", (dir.path() / "bowl.nc").string()});
   CHECK(post.exit_code == 0);
+  // --direction auto: the summary names the direction cut and every candidate's price.
+  const auto chosen = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.03",
+                                   "--tolerance", "0.002", "--direction", "auto", "-o", cl});
+  REQUIRE(chosen.exit_code == 0);
+  CHECK(chosen.out.find("  feed direction ") != std::string::npos);
+  CHECK(chosen.out.find(" deg, chosen by predicted cutting: 0 deg ") != std::string::npos);
+  CHECK(chosen.out.find(" mm, 45 deg ") != std::string::npos);
 }
 
-TEST_CASE("plan refuses a bad tool, scallop or cage in one line") {
+TEST_CASE("plan refuses a bad tool, scallop, direction or cage in one line") {
   TempDir dir;
   const auto cage = source_dir + "/examples/bowl.obj";
   const auto tool = run_process({bin, "plan", cage, "--tool", "flat:6", "--scallop", "0.01"});
@@ -50,6 +57,11 @@ TEST_CASE("plan refuses a bad tool, scallop or cage in one line") {
   CHECK(scallop.exit_code == 1);
   CHECK(scallop.err.find("--scallop: must be more than 0 and less than the ball radius") !=
         std::string::npos);
+  const auto direction =
+      run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.01", "--direction", "z"});
+  CHECK(direction.exit_code == 1);
+  CHECK(direction.err ==
+        "subfeed: error: --direction: 'z': expected x, y, auto or an angle in degrees\n");
   const auto bad = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   const auto cage_error = run_process({bin, "plan", bad.string(), "--tool", "ball:6", "--scallop",
                                        "0.01", "-o", (dir.path() / "x.cl").string()});

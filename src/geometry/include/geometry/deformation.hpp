@@ -11,8 +11,8 @@
 // raised where it is too wide and the system solved again (the factorisation is reused).
 // Raising eta near one spot crowds passes over a wide area around it, so each solve is
 // also priced: the cutting length its planes plus the passes inserted where they are still
-// too far apart (pass_insertion.hpp) would take, by the co-area formula. The cheapest
-// solve is kept.
+// too far apart (pass_insertion.hpp) would take along the tool's path, by the co-area
+// formula. The cheapest solve is kept.
 
 #include "base/error.hpp"
 #include "geometry/pass_insertion.hpp"
@@ -48,8 +48,12 @@ struct Deformation {
   double worst_ratio = 0.0; // largest measured/needed spacing of the kept solve
 };
 
+// `path_points` are where the tool's path runs, vertex for vertex (the tool tips: the design
+// mesh for a tool along the normal, the ball centres for a fixed axis): a solve is priced
+// by the length of its passes there, the length the machine cuts.
 [[nodiscard]] Expected<Deformation>
 deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
+               const std::vector<Eigen::Vector3d>& path_points,
                const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
                const PassIntervals& intervals, int max_iterations, double insertion_margin,
                double allowance, const SolveProgress& on_solve = {});

@@ -25,8 +25,8 @@ struct PassInsertion {
   std::vector<unsigned char> depth; // per triangle
   int max_depth = 0;
   double worst_ratio = 0.0; // measured/needed spacing before insertion
-  // Cutting length the planes and inserted passes would take on the CL surface, mm: the
-  // co-area formula, sum of area * 2^depth / spacing over the triangles.
+  // Cutting length the planes and inserted passes would take, mm: the triangles' level
+  // line lengths (of the ratios given), each times 2^depth.
   double predicted_length = 0.0;
 };
 
@@ -40,13 +40,19 @@ inline constexpr int max_insertion_depth = 4;
 // kink between triangles.
 struct SpacingRatios {
   std::vector<double> ratio;
-  std::vector<double> level_length; // mm of level lines per step on each triangle
+  std::vector<double> level_length; // mm of level lines on each triangle (level_lengths)
   double worst = 0.0;
 };
 [[nodiscard]] SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& cl_points,
                                            const std::vector<std::array<int, 3>>& triangles,
                                            const std::vector<double>& deformed, double step,
                                            const PassIntervals& intervals);
+
+// mm of level lines of `deformed` (spaced `step`) on each triangle of the mesh with these
+// points, by the co-area formula: area * |gradient| / step.
+[[nodiscard]] std::vector<double> level_lengths(const std::vector<Eigen::Vector3d>& points,
+                                                const std::vector<std::array<int, 3>>& triangles,
+                                                const std::vector<double>& deformed, double step);
 
 // The gradient of the linear function with values vi, vj, vk at the corners, 1/mm.
 [[nodiscard]] Eigen::Vector3d level_gradient(const Eigen::Vector3d& ci, const Eigen::Vector3d& cj,

@@ -25,6 +25,7 @@
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
 #include "geometry/deformation.hpp"
+#include "geometry/feed_direction.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/pass_insertion.hpp"
@@ -42,6 +43,9 @@ struct PlanOptions {
   double ball_radius = 3.0;   // mm
   double scallop = 0.01;      // mm
   double direction_deg = 0.0; // feed direction in the XY plane, from +X
+  // Instead of direction_deg, the direction whose path is predicted shortest
+  // (feed_direction.hpp); --baseline then cuts that direction too.
+  bool choose_direction = false;
   bool baseline = false;
   std::optional<double> axis_radius; // zeta, mm; default: the ball radius
   bool fixed_axis = false;           // vertical tool (three axes)
@@ -60,6 +64,8 @@ struct PlanOptions {
 };
 
 struct PlanSummary {
+  double direction_deg = 0.0;                 // the feed direction cut
+  std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
   int rate = 0;
   long mesh_vertices = 0;
   long mesh_triangles = 0;
