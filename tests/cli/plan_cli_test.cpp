@@ -1,13 +1,18 @@
 // `subfeed plan` and `subfeed verify` as a user runs them.
 
+#include "sim/pty.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <catch2/catch.hpp>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 
+using namespace std::chrono_literals;
+using subfeed::testing::BackgroundProcess;
 using subfeed::testing::run_process;
 using subfeed::testing::TempDir;
 
@@ -27,6 +32,7 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
                                  "--tolerance", "0.002", "-o", cl});
   REQUIRE(plan.exit_code == 0);
   CHECK(plan.out.find("deformed CL surface") != std::string::npos);
+  CHECK(plan.err.find("planning") == std::string::npos); // stderr is no terminal: no progress
   const auto verify = run_process({bin, "verify", cage, cl, "--tool", "ball:6", "--scallop", "0.03",
                                    "--spacing", "0.3", "--svg", svg});
   CHECK(verify.exit_code == 0);
@@ -44,6 +50,45 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
   CHECK(chosen.out.find("  feed direction ") != std::string::npos);
   CHECK(chosen.out.find(" deg, chosen by predicted cutting: 0 deg ") != std::string::npos);
   CHECK(chosen.out.find(" mm, 45 deg ") != std::string::npos);
+}
+
+TEST_CASE("plan shows its progress on a terminal and erases it before the summary", "[pty]") {
+  TempDir dir;
+  const auto cl = (dir.path() / "bowl.cl").string();
+  auto terminal = subfeed::sim::Pty::open().value(); // the user's terminal, as stderr
+  BackgroundProcess planner({bin, "plan", source_dir + "/examples/bowl.obj", "--tool", "ball:6",
+                             "--scallop", "0.03", "--tolerance", "0.002", "-o", cl},
+                            "/dev/null", terminal.slave_path());
+  std::atomic<bool> done{false};
+  subfeed::testing::ProcessResult result;
+  std::thread waiter([&] {
+    result = planner.wait();
+    done = true;
+  });
+  std::string shown;
+  char buffer[4096];
+  const auto take = [&](std::chrono::milliseconds wait) {
+    if (const auto n = terminal.read(buffer, wait); n && *n > 0) {
+      shown.append(buffer, *n);
+    }
+  };
+  while (!done) {
+    take(100ms);
+  }
+  waiter.join();
+  for (int i = 0; i < 5; ++i) {
+    take(20ms);
+  }
+  CHECK(result.exit_code == 0);
+  CHECK(result.out.find("deformed CL surface") != std::string::npos);
+  INFO(shown);
+  CHECK(shown.find("\r\033[Kplanning 00:00  meshing the limit surface") != std::string::npos);
+  CHECK(shown.find("  deformation solve 1 (at most 60)") != std::string::npos);
+  CHECK(shown.find("%  plane 0 of ") != std::string::npos);
+  CHECK(shown.find(" ETA ") != std::string::npos);
+  const auto last = shown.rfind("planning ");
+  REQUIRE(last != std::string::npos);
+  CHECK(shown.find("\r\033[K", last) != std::string::npos); // erased after the last one
 }
 
 TEST_CASE("plan refuses a bad tool, scallop, direction or cage in one line") {

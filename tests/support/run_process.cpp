@@ -35,7 +35,8 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
 namespace subfeed::testing {
 
 BackgroundProcess::BackgroundProcess(const std::vector<std::string>& argv,
-                                     const std::string& stdin_path) {
+                                     const std::string& stdin_path,
+                                     const std::string& stderr_path) {
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) {
     throw std::runtime_error("pipe failed");
@@ -47,7 +48,11 @@ BackgroundProcess::BackgroundProcess(const std::vector<std::string>& argv,
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, stdin_path.c_str(), O_RDWR, 0);
   posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 1);
-  posix_spawn_file_actions_adddup2(&actions, err_fd, 2);
+  if (stderr_path.empty()) {
+    posix_spawn_file_actions_adddup2(&actions, err_fd, 2);
+  } else {
+    posix_spawn_file_actions_addopen(&actions, 2, stderr_path.c_str(), O_RDWR, 0);
+  }
   posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
   std::vector<char*> args;
   for (const auto& a : argv) {

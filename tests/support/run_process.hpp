@@ -24,9 +24,11 @@ namespace subfeed::testing {
 // SIGKILL if still running when destroyed.
 class BackgroundProcess {
 public:
-  // `stdin_path` is opened as the program's standard input (a pty slave makes it a terminal).
+  // `stdin_path` is opened as the program's standard input (a pty slave makes it a terminal);
+  // `stderr_path`, when given, as its standard error (wait() then reports none).
   explicit BackgroundProcess(const std::vector<std::string>& argv,
-                             const std::string& stdin_path = "/dev/null");
+                             const std::string& stdin_path = "/dev/null",
+                             const std::string& stderr_path = {});
   BackgroundProcess(const BackgroundProcess&) = delete;
   BackgroundProcess& operator=(const BackgroundProcess&) = delete;
   ~BackgroundProcess();
