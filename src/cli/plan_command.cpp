@@ -53,6 +53,11 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,
                        s.passes, s.points, s.cut_length, s.link_length,
                        o.plan.baseline ? "iso-planar baseline" : "deformed CL surface"));
+  if (s.stay_down_links > 0) {
+    log.info(fmt::format("  {} of the {} links stay down: {:.1f} mm by feed along the surface "
+                         "(in the cutting length), the rest retract",
+                         s.stay_down_links, s.passes - 1, s.stay_down_length));
+  }
   log.info(fmt::format("  mesh {} vertices, {} triangles (up to {} segments a cage edge); plane "
                        "interval {:.4f}..{:.4f} mm; {} planes {:.4f} mm apart{}",
                        s.mesh_vertices, s.mesh_triangles, s.rate, s.min_interval, s.max_interval,

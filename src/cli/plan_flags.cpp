@@ -51,6 +51,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
   options.feed = o.feed;
   options.plunge_feed = o.plunge_feed;
   options.clearance = o.clearance;
+  if (o.stay_down >= 0.0) {
+    options.stay_down = o.stay_down;
+  }
   options.refine_iterations = o.refine;
   if (o.tolerance > 0.0) {
     options.tolerance = o.tolerance;
@@ -75,6 +78,11 @@ void add_plan_flags(CLI::App& cmd, PlanFlags& o, bool required) {
       ->check(CLI::Range(1.0, 100000.0));
   cmd.add_option("--clearance", o.clearance, "Retract along the tool axis between passes, mm")
       ->check(CLI::Range(0.01, 1000.0));
+  cmd.add_option("--stay-down", o.stay_down,
+                 "Reach a pass starting within MM by feed along the surface where the ball "
+                 "clears it (default the ball's diameter; 0: always retract)")
+      ->type_name("MM")
+      ->check(CLI::Range(0.0, 1000.0));
   cmd.add_option("--tolerance", o.tolerance,
                  "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
       ->check(CLI::Range(1e-6, 1.0));

@@ -24,6 +24,7 @@ struct PlanFlags {
   double feed = 1000.0;
   double plunge_feed = 300.0;
   double clearance = 2.0;
+  double stay_down = -1.0; // mm; 0: every link retracts; < 0: the ball's diameter
   double tolerance = 0.0;
   int level = geometry::min_approx_level;
   int refine = 60;

@@ -143,13 +143,13 @@ std::string encode_job(const RunOptions& o) {
   const auto& p = o.plan;
   return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
                      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
-                     "tolerance={} level={} refine={} spindle={}",
+                     "tolerance={} level={} refine={} spindle={} stay_down={}",
                      escape(o.cage), escape(o.machine),
                      escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
                      number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
                      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
                      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
-                     p.refine, number(o.spindle_rpm));
+                     p.refine, number(o.spindle_rpm), number(p.stay_down));
 }
 
 Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
@@ -203,6 +203,8 @@ Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
     o.plan.level = integer("level");
     o.plan.refine = integer("refine");
     o.spindle_rpm = real("spindle");
+    // Journals from before stay-down links were planned with every link retracting.
+    o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
   } catch (const std::exception& e) {
     return fail(ErrorCode::bad_input, std::string("job record without a valid '") + e.what() + "'",
                 where);

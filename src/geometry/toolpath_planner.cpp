@@ -97,6 +97,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   }
   planner.safe_z_ = top + options.clearance;
   planner.link_distance_ = 2.0 * widest + options.clearance;
+  planner.stay_down_ = options.stay_down.value_or(2.0 * r);
   return planner;
 }
 
@@ -193,7 +194,51 @@ Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
   return sink(pose);
 }
 
-Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sink) {
+std::optional<std::vector<cl::ClPose>>
+ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
+                                const PointGrid& design) const {
+  const Eigen::Vector3d e = tip_of(end), s = tip_of(start);
+  const Eigen::Vector3d ae = axis_of(end), as = axis_of(start);
+  const double length = (s - e).norm();
+  const double turn = std::acos(std::clamp(ae.dot(as), -1.0, 1.0));
+  // Steps of at most 0.05 mm and 2 degrees: between them the ball's sweep stays within a
+  // fraction of the mesh tolerance of the poses checked.
+  const int steps = std::max(1, static_cast<int>(std::ceil(
+                                    std::max(length / 0.05, turn / (2.0 * std::numbers::pi / 180.0)))));
+  std::vector<cl::ClPose> poses;
+  double rise = 0.0;
+  for (int i = 1; i < steps; ++i) {
+    const double t = static_cast<double>(i) / steps;
+    const Eigen::Vector3d axis = ((1.0 - t) * ae + t * as).normalized();
+    Eigen::Vector3d centre = (1.0 - t) * e + t * s + options_.ball_radius * axis;
+    const double lift = clearance_lift(design, centre, axis);
+    if (lift > 1e-9) {
+      centre += (lift + chord_tolerance_) * axis;
+      rise = std::max(rise, lift);
+    }
+    if (rise > length) {
+      return std::nullopt; // a bump, not a step to the next pass
+    }
+    poses.push_back(
+        pose_at(centre - options_.ball_radius * axis, axis, cl::MoveKind::feed, options_.feed));
+  }
+  return poses;
+}
+
+Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sink,
+                                        const PointGrid& design) {
+  if (last_ && stay_down_ > 0.0 && (tip_of(start) - tip_of(*last_)).norm() <= stay_down_) {
+    if (const auto poses = stay_down_link(*last_, start, design)) {
+      const double before = summary_.cut_length;
+      for (const auto& p : *poses) {
+        SUBFEED_TRY(put(p, sink));
+      }
+      SUBFEED_TRY(put(start, sink));
+      ++summary_.stay_down_links;
+      summary_.stay_down_length += summary_.cut_length - before;
+      return {};
+    }
+  }
   const Eigen::Vector3d above_start = tip_of(start) + options_.clearance * axis_of(start);
   if (last_) {
     const Eigen::Vector3d above_end = tip_of(*last_) + options_.clearance * axis_of(*last_);
@@ -219,14 +264,15 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
   return put(plunge, sink);
 }
 
-Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, const Sink& sink) {
+Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
+                                          const PointGrid& design) {
   const auto kept = reduce(pass);
   const auto pose = [&](std::size_t i) {
     const auto& p = pass[kept[i]];
     return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
                    options_.feed);
   };
-  SUBFEED_TRY(link_to(pose(0), sink));
+  SUBFEED_TRY(link_to(pose(0), sink, design));
   for (std::size_t i = 1; i < kept.size(); ++i) {
     SUBFEED_TRY(put(pose(i), sink));
   }
@@ -408,14 +454,14 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
     ++cut_levels;
     for (auto& pass : passes) {
       set_axes(pass, triangles);
-      SUBFEED_TRY(emit_pass(pass, sink));
+      SUBFEED_TRY(emit_pass(pass, sink, design));
     }
   }
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
   for (auto& pass : boundary_passes(design)) {
     set_axes(pass, triangles);
-    SUBFEED_TRY(emit_pass(pass, sink));
+    SUBFEED_TRY(emit_pass(pass, sink, design));
   }
   if (last_) {
     const Eigen::Vector3d above = tip_of(*last_) + options_.clearance * axis_of(*last_);

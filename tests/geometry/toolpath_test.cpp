@@ -28,6 +28,32 @@ geometry::LimitSurface surface_of(const geometry::Cage& cage) {
   return std::move(*surface);
 }
 
+std::string cl_name(double stay_down) {
+  return "stay-down-" + std::to_string(static_cast<int>(stay_down * 10)) + ".cl";
+}
+
+// The grid bowl's plans: ball 3 mm, H 0.03 mm.
+geometry::PlanOptions bowl_options() {
+  geometry::PlanOptions options;
+  options.ball_radius = 3.0;
+  options.scallop = 0.03;
+  options.tolerance = 0.001;
+  return options;
+}
+
+// The grid bowl (limit surface z = 0.04 x^2 + 0.01 y^2) planned into dir/name and measured
+// every 0.25 mm.
+subfeed::testing::PlannedPath plan_bowl(const TempDir& dir, const geometry::PlanOptions& options,
+                                        const std::string& name) {
+  const auto cage = subfeed::testing::grid_cage(6, 5.0, 0.04, 0.01);
+  const auto surface = surface_of(cage);
+  geometry::VerifyOptions verify;
+  verify.ball_radius = 3.0;
+  verify.scallop_target = 0.03;
+  verify.sample_spacing = 0.25;
+  return subfeed::testing::plan_and_verify(cage, surface, options, verify, dir.path() / name);
+}
+
 int nearest_vertex(const geometry::SurfaceMesh& mesh, const Eigen::Vector3d& p) {
   int best = 0;
   for (int i = 1; i < mesh.vertex_count(); ++i) {
@@ -89,22 +115,10 @@ TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um,
           "baseline",
           "[slow]") {
   TempDir dir;
-  const auto cage = subfeed::testing::grid_cage(6, 5.0, 0.04, 0.01);
-  const auto surface = surface_of(cage);
   const auto plan = [&](bool baseline) {
-    geometry::PlanOptions options;
-    options.ball_radius = 3.0;
-    options.scallop = 0.03;
+    auto options = bowl_options();
     options.baseline = baseline;
-    options.tolerance = 0.001;
-    geometry::VerifyOptions verify;
-    verify.ball_radius = 3.0;
-    verify.scallop_target = 0.03;
-    verify.sample_spacing = 0.25;
-    return subfeed::testing::plan_and_verify(cage, surface, options, verify,
-                                             dir.path() /
-                                                 (baseline ? "baseline.cl" : "deformed.cl"))
-        .report;
+    return plan_bowl(dir, options, baseline ? "baseline.cl" : "deformed.cl").report;
   };
   const auto deformed = plan(false);
   const auto baseline = plan(true);
@@ -232,4 +246,26 @@ TEST_CASE("mesh edges: each once, sorted, with the triangles on it") {
   CHECK(geometry::triangles_on_edge(edges, 0, 1) == 1);
   CHECK(geometry::triangles_on_edge(edges, 3, 2) == 1);
   CHECK(geometry::triangles_on_edge(edges, 0, 3) == 0);
+}
+
+TEST_CASE("stay-down links: neighbouring passes reached by feed along the surface, no gouge",
+          "[slow]") {
+  TempDir dir;
+  const auto plan = [&](double stay_down) {
+    auto options = bowl_options();
+    options.stay_down = stay_down;
+    return plan_bowl(dir, options, cl_name(stay_down));
+  };
+  const auto retracting = plan(0.0);
+  const auto staying = plan(3.0);
+  INFO("links " << retracting.plan.link_length << " mm retracting, "
+                << staying.plan.link_length << " mm with " << staying.plan.stay_down_links
+                << " stay-down links of " << staying.plan.stay_down_length << " mm");
+  CHECK(retracting.plan.stay_down_links == 0);
+  CHECK(staying.plan.stay_down_links * 2 > staying.plan.passes); // most zig-zag turns
+  CHECK(staying.plan.link_length < 0.7 * retracting.plan.link_length);
+  CHECK(staying.plan.cut_length ==
+        Approx(retracting.plan.cut_length + staying.plan.stay_down_length).epsilon(1e-9));
+  CHECK(staying.report.max_gouge <= 1e-3);
+  CHECK(staying.report.max_scallop <= 1.05 * 0.03);
 }

@@ -54,6 +54,13 @@ struct PlanOptions {
   double feed = 1000.0;            // mm/min
   double plunge_feed = 300.0;      // mm/min
   double clearance = 2.0;          // mm, retract along the tool axis between passes
+  // mm: a pass that starts within this of where the last one ended is reached by feed
+  // along the surface (tip straight, axis turned), where the ball clears the design mesh
+  // all the way, riding over what it would cut into, instead of retract, rapid and
+  // plunge: a neighbouring pass, or the far side of a sharp convex crease, where the
+  // ball rides over the edge (the tear between the two CL sheets, about r times the
+  // normals' difference). Default the ball's diameter; 0: always retract.
+  std::optional<double> stay_down;
   int refine_iterations = 60;
   // mm an inserted pass runs past where it is needed; default the widest CL spacing.
   std::optional<double> insertion_margin;
@@ -84,6 +91,8 @@ struct PlanSummary {
   long lifted_points = 0;   // CL points lifted clear of hollows narrower than the ball
   double cut_length = 0.0;  // mm of feed moves along passes
   double link_length = 0.0; // mm of retracts, rapids and plunges
+  long stay_down_links = 0; // links made by feed along the surface
+  double stay_down_length = 0.0; // mm of them (counted in cut_length)
 };
 
 class ToolpathPlanner {
@@ -119,8 +128,14 @@ private:
   void clear_pass(std::vector<PassPoint>& pass, const PointGrid& design);
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
-  [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink);
-  [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink);
+  [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
+                                         const PointGrid& design);
+  [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink,
+                                       const PointGrid& design);
+  // The feed poses between `end` and `start` (both excluded) of a link that stays down, or
+  // none where the ball would have to rise more than the link is long.
+  [[nodiscard]] std::optional<std::vector<cl::ClPose>>
+  stay_down_link(const cl::ClPose& end, const cl::ClPose& start, const PointGrid& design) const;
   [[nodiscard]] Expected<void> put(const cl::ClPose& pose, const Sink& sink);
 
   PlanOptions options_;
@@ -134,6 +149,7 @@ private:
   double chord_tolerance_ = 0.0;
   double safe_z_ = 0.0;
   double link_distance_ = 0.0;
+  double stay_down_ = 0.0; // mm
   std::optional<cl::ClPose> last_;
   PlanSummary summary_;
 };
