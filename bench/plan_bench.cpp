@@ -118,10 +118,10 @@ void bench_path_lengths(const std::filesystem::path& dir) {
         std::printf("  %s: --direction auto chose %g deg\n", part.name, run.summary.direction_deg);
       }
     }
-    bench::report({fmt::format("L/L* {}, feed X", part.name), ratio[0], "", "--baseline", ratio[1],
-                   false});
-    bench::report({fmt::format("L/L* {}, --direction auto", part.name), ratio[2], "",
-                   "feed X", ratio[0], false});
+    bench::report(
+        {fmt::format("L/L* {}, feed X", part.name), ratio[0], "", "--baseline", ratio[1], false});
+    bench::report({fmt::format("L/L* {}, --direction auto", part.name), ratio[2], "", "feed X",
+                   ratio[0], false});
   }
 }
 

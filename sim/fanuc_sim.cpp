@@ -332,8 +332,8 @@ private:
   Clock::time_point stalled_until_{};
   double tokens_ = 0.0;
   int after_xoff_ = 0;
-  std::size_t batch_left_ = 0; // bytes of the current read after the one being handled
-  std::size_t in_flight_ = 0;  // bytes written before the last DC3 left, not yet handled
+  std::size_t batch_left_ = 0;       // bytes of the current read after the one being handled
+  std::size_t in_flight_ = 0;        // bytes written before the last DC3 left, not yet handled
   Clock::time_point latency_ends_{}; // the last DC3 left, plus the link's latency
   bool latency_closed_ = true;
   bool connected_ = false;

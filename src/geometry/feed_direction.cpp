@@ -16,15 +16,14 @@ Eigen::Vector3d slicing_normal_for(double direction_deg) {
 namespace {
 
 Expected<double> price(const SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& cl_points,
-                       const std::vector<Eigen::Vector3d>& path_points,
-                       const DirectionPricing& p, double direction_deg,
-                       const SolveProgress& on_solve) {
+                       const std::vector<Eigen::Vector3d>& path_points, const DirectionPricing& p,
+                       double direction_deg, const SolveProgress& on_solve) {
   const Eigen::Vector3d s = slicing_normal_for(direction_deg);
   const auto intervals = pass_intervals(mesh, p.ball_radius, p.scallop, s);
   const double margin = p.insertion_margin.value_or(std::ranges::max(intervals.cl_spacing));
-  SUBFEED_TRY_ASSIGN(const auto d, deform_cl_mesh(cl_points, path_points, mesh.triangles, s, intervals,
-                                                  p.solves, margin, p.spacing_allowance,
-                                                  on_solve));
+  SUBFEED_TRY_ASSIGN(const auto d,
+                     deform_cl_mesh(cl_points, path_points, mesh.triangles, s, intervals, p.solves,
+                                    margin, p.spacing_allowance, on_solve));
   return d.insertion.predicted_length;
 }
 
@@ -37,7 +36,8 @@ Expected<DirectionChoice> choose_feed_direction(const SurfaceMesh& mesh,
                                                 const SolveProgress& on_solve) {
   DirectionChoice choice;
   const auto tried = [&](double deg) -> Expected<void> {
-    SUBFEED_TRY_ASSIGN(const double length, price(mesh, cl_points, path_points, pricing, deg, on_solve));
+    SUBFEED_TRY_ASSIGN(const double length,
+                       price(mesh, cl_points, path_points, pricing, deg, on_solve));
     choice.prices.push_back({deg, length});
     return {};
   };

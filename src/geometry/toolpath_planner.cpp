@@ -57,8 +57,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   if (options.choose_direction) {
     const DirectionPricing pricing{r, options.scallop, std::min(options.refine_iterations, 4),
                                    options.spacing_allowance, options.insertion_margin};
-    SUBFEED_TRY_ASSIGN(auto choice,
-                       choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
+    SUBFEED_TRY_ASSIGN(
+        auto choice, choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
     direction = choice.direction_deg;
     planner.summary_.direction_prices = std::move(choice.prices);
   }
@@ -73,8 +73,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
   } else {
     SUBFEED_TRY_ASSIGN(planner.deformation_,
-                       deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_, intervals,
-                                      options.refine_iterations, insertion_margin,
+                       deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_,
+                                      intervals, options.refine_iterations, insertion_margin,
                                       options.spacing_allowance, progress));
   }
   auto& s = planner.summary_;
@@ -203,8 +203,9 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
   const double turn = std::acos(std::clamp(ae.dot(as), -1.0, 1.0));
   // Steps of at most 0.05 mm and 2 degrees: between them the ball's sweep stays within a
   // fraction of the mesh tolerance of the poses checked.
-  const int steps = std::max(1, static_cast<int>(std::ceil(
-                                    std::max(length / 0.05, turn / (2.0 * std::numbers::pi / 180.0)))));
+  const int steps =
+      std::max(1, static_cast<int>(
+                      std::ceil(std::max(length / 0.05, turn / (2.0 * std::numbers::pi / 180.0)))));
   std::vector<cl::ClPose> poses;
   double rise = 0.0;
   for (int i = 1; i < steps; ++i) {

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
-#include <thread>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 using namespace std::chrono_literals;
 using subfeed::testing::BackgroundProcess;

@@ -361,9 +361,9 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
   // DC3 over. The first control runs slowly enough that the lazy planner keeps its buffer
   // full even on a loaded machine: when it is killed it is inside a block it was sent.
   const auto control = [&](const std::string& log, const char* speed) {
-    return std::vector<std::string>{sim_bin, "fanuc", "--baud",          "0",  "--speed", speed,
-                                    "--log", log,     "--machine-state", state,
-                                    "--link-latency", "50"};
+    return std::vector<std::string>{sim_bin,           "fanuc", "--baud",         "0",
+                                    "--speed",         speed,   "--log",          log,
+                                    "--machine-state", state,   "--link-latency", "50"};
   };
   BackgroundProcess first(control(first_log, "3"));
   kill_controller_mid_job(first, base, machine);

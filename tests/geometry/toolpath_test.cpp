@@ -258,9 +258,9 @@ TEST_CASE("stay-down links: neighbouring passes reached by feed along the surfac
   };
   const auto retracting = plan(0.0);
   const auto staying = plan(3.0);
-  INFO("links " << retracting.plan.link_length << " mm retracting, "
-                << staying.plan.link_length << " mm with " << staying.plan.stay_down_links
-                << " stay-down links of " << staying.plan.stay_down_length << " mm");
+  INFO("links " << retracting.plan.link_length << " mm retracting, " << staying.plan.link_length
+                << " mm with " << staying.plan.stay_down_links << " stay-down links of "
+                << staying.plan.stay_down_length << " mm");
   CHECK(retracting.plan.stay_down_links == 0);
   CHECK(staying.plan.stay_down_links * 2 > staying.plan.passes); // most zig-zag turns
   CHECK(staying.plan.link_length < 0.7 * retracting.plan.link_length);

@@ -71,7 +71,7 @@ struct PlanOptions {
 };
 
 struct PlanSummary {
-  double direction_deg = 0.0;                 // the feed direction cut
+  double direction_deg = 0.0;                   // the feed direction cut
   std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
   int rate = 0;
   long mesh_vertices = 0;
@@ -86,12 +86,12 @@ struct PlanSummary {
   double worst_spacing_ratio = 0.0; // measured/needed of the planes, before insertion
   int inserted_depth = 0;           // passes inserted down to step / 2^depth
   long planes = 0;
-  long passes = 0;          // polylines cut
-  long points = 0;          // feed points written
-  long lifted_points = 0;   // CL points lifted clear of hollows narrower than the ball
-  double cut_length = 0.0;  // mm of feed moves along passes
-  double link_length = 0.0; // mm of retracts, rapids and plunges
-  long stay_down_links = 0; // links made by feed along the surface
+  long passes = 0;               // polylines cut
+  long points = 0;               // feed points written
+  long lifted_points = 0;        // CL points lifted clear of hollows narrower than the ball
+  double cut_length = 0.0;       // mm of feed moves along passes
+  double link_length = 0.0;      // mm of retracts, rapids and plunges
+  long stay_down_links = 0;      // links made by feed along the surface
   double stay_down_length = 0.0; // mm of them (counted in cut_length)
 };
 
