@@ -42,9 +42,9 @@ struct Link {
 // plain GRBL 1.1 otherwise.
 [[nodiscard]] std::string simulator_for(const post::MachineConfig& machine);
 
-// The alarm a simulated Fanuc control shows on its screen (a real one tells the sender
-// nothing: it just holds the tape), empty when there is none or no simulated control.
-// `error` with that alarm appended, so the one error line says why the tape was held.
+// `error` with the alarm a simulated Fanuc control shows on its screen appended, so the
+// one error line says why the tape was held (a real control tells the sender nothing: it
+// just holds the tape); unchanged without a simulated control or an alarm.
 [[nodiscard]] Error with_simulated_alarm(Error error, const Link& link);
 
 [[nodiscard]] Expected<Link> open_link(const LinkRequest& request,

@@ -146,9 +146,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
     const Eigen::VectorXd x = solver.solve(rhs);
     deformed.assign(x.data(), x.data() + n);
     const auto planes = space_planes(deformed, d.reference);
-    auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
-    measured.level_length = level_lengths(path_points, triangles, deformed, planes.step);
-    auto insertion = pass_insertion(c, triangles, measured, insertion_margin, allowance);
+    const auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
+    auto insertion = pass_insertion(c, triangles, measured,
+                                    level_lengths(path_points, triangles, deformed, planes.step),
+                                    insertion_margin, allowance);
     if (insertion.predicted_length < cheapest) {
       cheapest = insertion.predicted_length;
       d.deformed = deformed;

@@ -65,7 +65,6 @@ SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
                              const PassIntervals& intervals) {
   SpacingRatios out;
   out.ratio.assign(triangles.size(), 0.0);
-  out.level_length.assign(triangles.size(), 0.0);
   std::vector<Eigen::Vector3d> gradient(triangles.size());
   std::vector<Eigen::Vector3d> vertex_sum(c.size(), Eigen::Vector3d::Zero());
   std::vector<double> vertex_area(c.size(), 0.0);
@@ -73,7 +72,6 @@ SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
     const auto [i, j, k] = corners(triangles[t]);
     gradient[t] = level_gradient(c[i], c[j], c[k], deformed[i], deformed[j], deformed[k]);
     const double area = 0.5 * (c[j] - c[i]).cross(c[k] - c[i]).norm();
-    out.level_length[t] = area * gradient[t].norm() / step; // co-area formula
     for (const auto v : {i, j, k}) {
       vertex_sum[v] += area * gradient[t];
       vertex_area[v] += area;
@@ -119,12 +117,13 @@ PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
                              const std::vector<double>& deformed, double step,
                              const PassIntervals& intervals, double margin, double allowance) {
   return pass_insertion(c, triangles, spacing_ratios(c, triangles, deformed, step, intervals),
-                        margin, allowance);
+                        level_lengths(c, triangles, deformed, step), margin, allowance);
 }
 
 PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
                              const std::vector<std::array<int, 3>>& triangles,
-                             const SpacingRatios& measured, double margin, double allowance) {
+                             const SpacingRatios& measured, const std::vector<double>& level_length,
+                             double margin, double allowance) {
   PassInsertion out;
   out.worst_ratio = measured.worst;
   out.depth.assign(triangles.size(), 0);
@@ -147,7 +146,7 @@ PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& c,
     }
   }
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    out.predicted_length += std::ldexp(measured.level_length[t], out.depth[t]);
+    out.predicted_length += std::ldexp(level_length[t], out.depth[t]);
   }
   return out;
 }

@@ -26,7 +26,7 @@ struct PassInsertion {
   int max_depth = 0;
   double worst_ratio = 0.0; // measured/needed spacing before insertion
   // Cutting length the planes and inserted passes would take, mm: the triangles' level
-  // line lengths (of the ratios given), each times 2^depth.
+  // line lengths, each times 2^depth.
   double predicted_length = 0.0;
 };
 
@@ -40,7 +40,6 @@ inline constexpr int max_insertion_depth = 4;
 // kink between triangles.
 struct SpacingRatios {
   std::vector<double> ratio;
-  std::vector<double> level_length; // mm of level lines on each triangle (level_lengths)
   double worst = 0.0;
 };
 [[nodiscard]] SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& cl_points,
@@ -64,10 +63,12 @@ struct SpacingRatios {
                                            const std::vector<double>& deformed, double step,
                                            const PassIntervals& intervals, double margin,
                                            double allowance);
-// The same from spacing ratios already measured.
+// The same from spacing ratios already measured, priced by `level_length` (level_lengths
+// on the points the tool's path runs through).
 [[nodiscard]] PassInsertion pass_insertion(const std::vector<Eigen::Vector3d>& cl_points,
                                            const std::vector<std::array<int, 3>>& triangles,
-                                           const SpacingRatios& measured, double margin,
+                                           const SpacingRatios& measured,
+                                           const std::vector<double>& level_length, double margin,
                                            double allowance);
 
 // The depth a level at `index` (in units of step / 2^max_insertion_depth) belongs to: 0 for
