@@ -91,7 +91,7 @@ TEST_CASE("plan shows its progress on a terminal and erases it before the summar
   CHECK(shown.find("\r\033[K", last) != std::string::npos); // erased after the last one
 }
 
-TEST_CASE("plan refuses a bad tool, scallop, direction or cage in one line") {
+TEST_CASE("plan refuses a bad tool, scallop, direction, stay-down or cage in one line") {
   TempDir dir;
   const auto cage = source_dir + "/examples/bowl.obj";
   const auto tool = run_process({bin, "plan", cage, "--tool", "flat:6", "--scallop", "0.01"});
@@ -107,6 +107,11 @@ TEST_CASE("plan refuses a bad tool, scallop, direction or cage in one line") {
   CHECK(direction.exit_code == 1);
   CHECK(direction.err ==
         "subfeed: error: --direction: 'z': expected x, y, auto or an angle in degrees\n");
+  const auto stay_down = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.01",
+                                      "--stay-down", "-1", "-o", (dir.path() / "s.cl").string()});
+  CHECK(stay_down.exit_code == 1);
+  CHECK(stay_down.err.starts_with("subfeed: usage: --stay-down: Value -1 not in range"));
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "s.cl"));
   const auto bad = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   const auto cage_error = run_process({bin, "plan", bad.string(), "--tool", "ball:6", "--scallop",
                                        "0.01", "-o", (dir.path() / "x.cl").string()});

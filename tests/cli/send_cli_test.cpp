@@ -230,6 +230,13 @@ TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[p
   CHECK(journal.find(" end failed ") != std::string::npos);
 }
 
+TEST_CASE("subfeed-sim fanuc refuses a negative link latency in one line", "[unit]") {
+  const auto r = run_process({sim_bin, "fanuc", "--link-latency", "-5"});
+  CHECK(r.exit_code == 1);
+  CHECK(r.out.empty()); // no pty offered
+  CHECK(r.err.starts_with("subfeed-sim: usage: --link-latency: Value -5 not in range 0 to 60000"));
+}
+
 TEST_CASE("a journal that cannot be written stops the job before it starts", "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(5, 3000));
