@@ -114,6 +114,24 @@ std::optional<RestartPoint> find_machine(const ProgramWindow& window,
   return found;
 }
 
+namespace {
+
+// The sequence number a program line starts with, if it starts with one.
+std::optional<long> sequence_number(const std::string& text) {
+  const auto start = text.find_first_not_of(' ');
+  if (start == std::string::npos || std::toupper(static_cast<unsigned char>(text[start])) != 'N') {
+    return std::nullopt;
+  }
+  char* stop = nullptr;
+  const long n = std::strtol(text.c_str() + start + 1, &stop, 10);
+  if (stop == text.c_str() + start + 1) {
+    return std::nullopt;
+  }
+  return n;
+}
+
+} // namespace
+
 Expected<long> find_sequence_number(const std::string& program, long number, long last_sent) {
   std::ifstream in(program);
   if (!in) {
@@ -123,21 +141,24 @@ Expected<long> find_sequence_number(const std::string& program, long number, lon
   std::string text;
   while (line < last_sent && std::getline(in, text)) {
     ++line;
-    const auto start = text.find_first_not_of(' ');
-    if (start == std::string::npos ||
-        std::toupper(static_cast<unsigned char>(text[start])) != 'N') {
-      continue;
-    }
-    char* stop = nullptr;
-    const long n = std::strtol(text.c_str() + start + 1, &stop, 10);
-    if (stop != text.c_str() + start + 1 && n == number) {
+    if (sequence_number(text) == number) {
       found = line;
     }
   }
+  while (found == 0 && std::getline(in, text)) {
+    ++line;
+    if (const auto n = sequence_number(text)) {
+      if (*n == number) {
+        found = line;
+      }
+      break;
+    }
+  }
   if (found == 0) {
-    return fail(ErrorCode::usage,
-                fmt::format("no block N{} among the {} lines sent", number, last_sent),
-                {program, 0, "--block"});
+    return fail(
+        ErrorCode::usage,
+        fmt::format("no block N{} among the {} lines sent or the next block", number, last_sent),
+        {program, 0, "--block"});
   }
   return found;
 }

@@ -52,7 +52,9 @@ struct RestartPoint {
 [[nodiscard]] std::optional<RestartPoint>
 find_machine(const ProgramWindow& window, const std::vector<double>& position, int decimals);
 
-// The last program line up to `last_sent` that carries sequence number N`number`.
+// The last program line up to `last_sent` that carries sequence number N`number`; failing
+// that, the first numbered line after `last_sent` when it carries N`number`: a control that
+// ran dry had finished every block it was sent, and the operator gives the next to run.
 [[nodiscard]] Expected<long> find_sequence_number(const std::string& program, long number,
                                                   long last_sent);
 

@@ -424,7 +424,9 @@ Expected<Restart> dnc_restart(const Interrupted& r, const ResumeOptions& o) {
   } else {
     SUBFEED_TRY_ASSIGN(const long line, find_sequence_number(j.program, o.block, j.last_sent));
     s.after = line - 1;
-    s.why = fmt::format("block N{} runs again from its start", o.block);
+    s.why = line > j.last_sent
+                ? fmt::format("block N{}, the first not sent, runs from its start", o.block)
+                : fmt::format("block N{} runs again from its start", o.block);
   }
   std::optional<Joints> here;
   if (!o.at.empty()) {

@@ -82,6 +82,17 @@ TEST_CASE("a sequence number is found at its last use up to the last line sent")
   CHECK(missing.error().where.key == "--block");
 }
 
+TEST_CASE("a control that ran dry may be given the first block not sent, and no later one") {
+  TempDir dir;
+  const auto file =
+      dir.write("n.nc", "%\nO1\nN1 G21\nN2 G0 X1\n(note)\nN3 G1 X2\nN4 X3\n%\n").string();
+  CHECK(find_sequence_number(file, 3, 4).value() == 6); // past a comment line
+  CHECK(find_sequence_number(file, 3, 5).value() == 6);
+  CHECK(find_sequence_number(file, 2, 5).value() == 4); // sent: found among the sent
+  CHECK_FALSE(find_sequence_number(file, 4, 4));        // two blocks on: would skip N3
+  CHECK_FALSE(find_sequence_number(file, 4, 5));
+}
+
 TEST_CASE("under TCP the restart point's joints put the tool tip where the words say") {
   const auto machine = post::load_machine_config(source + "/configs/fanuc-xyzac-trt.toml");
   REQUIRE(machine);

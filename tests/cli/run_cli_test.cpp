@@ -386,7 +386,14 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
       run_process({bin, "resume", base + ".journal", "--port", port2, "--block", block, "--yes"});
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
-  CHECK(resumed.out.find("block N" + block + " runs again from its start") != std::string::npos);
+  // Inside a block when killed, or (a loaded machine whose planner fell behind) idle with
+  // every block it was sent finished: either way the next block runs from its start.
+  const bool inside =
+      resumed.out.find("block N" + block + " runs again from its start") != std::string::npos;
+  const bool next = resumed.out.find("block N" + block +
+                                     ", the first not sent, runs from its "
+                                     "start") != std::string::npos;
+  CHECK((inside || next));
   wait_until_still(second_log); // DNC has no acknowledgements: the control is still moving
   auto ran = ran_first;
   const auto ran_second = lines_of(second_log);
@@ -439,7 +446,7 @@ TEST_CASE("a DNC resume refuses what the user gave wrong, in one line, before to
           "[unit]") {
   subfeed::testing::TempDir dir;
   const auto program =
-      dir.write("job.nc", "%\nO1234\nN1 G21 G90\nN2 G0 X1.\nN3 G1 X2. F100.\n%\n").string();
+      dir.write("job.nc", "%\nO1234\nN1 G21 G90\nN2 G0 X1.\nN3 G1 X2. F100.\nN4 X3.\n%\n").string();
   const std::string journal = (dir.path() / "job.journal").string();
   const std::string text = "0 start protocol=fanuc program=" + program +
                            " link=/dev/pts/9\n5 sent line=4 bytes=10\n"; // "N2 G0 X1." and its LF
@@ -468,11 +475,11 @@ TEST_CASE("a DNC resume refuses what the user gave wrong, in one line, before to
     CHECK(r.err == "subfeed: error: --at: the tool tilts with the head: give the machine "
                    "position the control shows, so that the retract follows the tool's axis\n");
   }
-  SECTION("a block that was never sent") {
-    const auto r = resume(fanuc, {"--block", "3"});
+  SECTION("a block past the first not sent: the blocks before it would be skipped") {
+    const auto r = resume(fanuc, {"--block", "4"});
     CHECK(r.exit_code == 1);
-    CHECK(r.err ==
-          "subfeed: error: " + program + ": --block: no block N3 among the 4 lines sent\n");
+    CHECK(r.err == "subfeed: error: " + program +
+                       ": --block: no block N4 among the 4 lines sent or the next block\n");
   }
   SECTION("--tcp for drip feed") {
     const auto r = run_process({bin, "resume", journal, "--tcp", "localhost:1", "--machine", fanuc,
