@@ -73,9 +73,11 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   }
   if (!s.direction_prices.empty()) {
     std::string prices;
+    bool full = false;
     for (const auto& c : s.direction_prices) {
-      prices += fmt::format("{}{:g} deg {:.0f} mm", prices.empty() ? "" : ", ", c.direction_deg,
-                            c.predicted_length);
+      const char* separator = prices.empty() ? "" : (c.full && !full ? "; solved in full: " : ", ");
+      full = full || c.full;
+      prices += fmt::format("{}{:g} deg {:.0f} mm", separator, c.direction_deg, c.predicted_length);
     }
     log.info(fmt::format("  feed direction {:g} deg, chosen by predicted cutting: {}",
                          s.direction_deg, prices));

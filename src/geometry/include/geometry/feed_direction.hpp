@@ -8,7 +8,10 @@
 // halfway to the neighbours of the cheapest. X or Y (the cheaper) is kept unless another
 // direction is predicted shorter by more than `axis_preference`: the prediction is good to
 // about 2 %, and a raster along a machine axis is what a machinist expects otherwise.
-// Directions are in the XY plane, from +X.
+// Where that leaves a direction off the axes, the few solves may not have settled (a part
+// whose passes must bend far takes dozens), so the direction and the axis are both solved
+// in full and priced again, with the same preference; the winner's deformation is kept
+// for the plan. Directions are in the XY plane, from +X.
 
 #include "base/error.hpp"
 #include "geometry/deformation.hpp"
@@ -23,17 +26,21 @@ namespace subfeed::geometry {
 struct DirectionPrice {
   double direction_deg = 0.0;
   double predicted_length = 0.0; // mm of cutting
+  bool full = false;             // priced by the full deformation, not the first solves
 };
 
 struct DirectionChoice {
   double direction_deg = 0.0;         // the cheapest
   std::vector<DirectionPrice> prices; // in the order tried
+  bool solved_in_full = false;        // then `deformation` is the chosen direction's
+  Deformation deformation;
 };
 
 struct DirectionPricing {
   double ball_radius = 3.0; // mm
   double scallop = 0.01;    // mm
   int solves = 4;           // deformation solves per candidate
+  int full_solves = 60;     // the most solves of a full deformation
   double spacing_allowance = 0.01;
   std::optional<double> insertion_margin; // mm; default the widest CL spacing
   double axis_preference = 0.02;          // fraction of the length
