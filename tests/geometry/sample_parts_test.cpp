@@ -33,8 +33,8 @@ testing::PlannedPath plan_part(const geometry::Cage& cage, const geometry::Limit
 
 // `bends`: the need changes along the passes (the dome's top against its walls); the passes
 // bend to follow it, so nothing is inserted and the planes each make one long pass.
-void check_part(const char* name, double radius, std::initializer_list<double> targets,
-                bool curved, bool bends = false) {
+void check_part(const char* name, double radius, std::initializer_list<double> targets, bool curved,
+                bool bends = false) {
   const auto cage = geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/" + name);
   REQUIRE(cage);
   const auto surface = geometry::LimitSurface::build(*cage);
