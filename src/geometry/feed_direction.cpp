@@ -27,6 +27,36 @@ Expected<Deformation> deform_along(const SurfaceMesh& mesh,
                         p.spacing_allowance, on_solve);
 }
 
+// Whether `other` is cheaper than the axis's `axis_length` by more than the preference.
+bool clearly_cheaper(const DirectionPricing& p, double other, double axis_length) {
+  return axis_length > (1.0 + p.axis_preference) * other;
+}
+
+double price_of(const std::vector<DirectionPrice>& prices, double deg) {
+  return std::ranges::find(prices, deg, &DirectionPrice::direction_deg)->predicted_length;
+}
+
+// Solves `off_axis` and `choice`'s axis in full and keeps the cheaper, with the preference.
+Expected<void> confirm_in_full(const SurfaceMesh& mesh,
+                               const std::vector<Eigen::Vector3d>& cl_points,
+                               const std::vector<Eigen::Vector3d>& path_points,
+                               const DirectionPricing& pricing, double off_axis,
+                               const SolveProgress& on_solve, DirectionChoice& choice) {
+  const double axis = choice.direction_deg;
+  SUBFEED_TRY_ASSIGN(auto off, deform_along(mesh, cl_points, path_points, pricing, off_axis,
+                                            pricing.full_solves, on_solve));
+  SUBFEED_TRY_ASSIGN(auto on, deform_along(mesh, cl_points, path_points, pricing, axis,
+                                           pricing.full_solves, on_solve));
+  choice.prices.push_back({off_axis, off.insertion.predicted_length, true});
+  choice.prices.push_back({axis, on.insertion.predicted_length, true});
+  const bool off_wins =
+      clearly_cheaper(pricing, off.insertion.predicted_length, on.insertion.predicted_length);
+  choice.direction_deg = off_wins ? off_axis : axis;
+  choice.deformation = std::move(off_wins ? off : on);
+  choice.solved_in_full = true;
+  return {};
+}
+
 } // namespace
 
 Expected<DirectionChoice> choose_feed_direction(const SurfaceMesh& mesh,
@@ -55,29 +85,11 @@ Expected<DirectionChoice> choose_feed_direction(const SurfaceMesh& mesh,
   const double best = cheapest();
   // Along a machine axis unless another direction is clearly cheaper: the prediction leaves
   // out boundary passes and how far inserted passes run, about 2 % of the length.
-  const auto price_of = [&](double deg) {
-    return std::ranges::find(choice.prices, deg, &DirectionPrice::direction_deg)->predicted_length;
-  };
-  const double axis = price_of(0.0) <= price_of(90.0) ? 0.0 : 90.0;
-  const auto clearly_cheaper = [&](double other, double than_axis) {
-    return than_axis > (1.0 + pricing.axis_preference) * other;
-  };
-  if (!clearly_cheaper(price_of(best), price_of(axis))) {
-    choice.direction_deg = axis;
-    return choice;
+  const double axis = price_of(choice.prices, 0.0) <= price_of(choice.prices, 90.0) ? 0.0 : 90.0;
+  choice.direction_deg = axis;
+  if (clearly_cheaper(pricing, price_of(choice.prices, best), price_of(choice.prices, axis))) {
+    SUBFEED_TRY(confirm_in_full(mesh, cl_points, path_points, pricing, best, on_solve, choice));
   }
-  SUBFEED_TRY_ASSIGN(auto off_axis, deform_along(mesh, cl_points, path_points, pricing, best,
-                                                 pricing.full_solves, on_solve));
-  SUBFEED_TRY_ASSIGN(auto on_axis, deform_along(mesh, cl_points, path_points, pricing, axis,
-                                                pricing.full_solves, on_solve));
-  const double off_length = off_axis.insertion.predicted_length;
-  const double on_length = on_axis.insertion.predicted_length;
-  choice.prices.push_back({best, off_length, true});
-  choice.prices.push_back({axis, on_length, true});
-  const bool off_wins = clearly_cheaper(off_length, on_length);
-  choice.direction_deg = off_wins ? best : axis;
-  choice.deformation = std::move(off_wins ? off_axis : on_axis);
-  choice.solved_in_full = true;
   return choice;
 }
 
