@@ -68,12 +68,14 @@ SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
   std::vector<Eigen::Vector3d> gradient(triangles.size());
   std::vector<Eigen::Vector3d> vertex_sum(c.size(), Eigen::Vector3d::Zero());
   std::vector<double> vertex_area(c.size(), 0.0);
+  std::vector<double> vertex_length(c.size(), 0.0); // area-weighted |gradient|
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto [i, j, k] = corners(triangles[t]);
     gradient[t] = level_gradient(c[i], c[j], c[k], deformed[i], deformed[j], deformed[k]);
     const double area = 0.5 * (c[j] - c[i]).cross(c[k] - c[i]).norm();
     for (const auto v : {i, j, k}) {
       vertex_sum[v] += area * gradient[t];
+      vertex_length[v] += area * gradient[t].norm();
       vertex_area[v] += area;
     }
   }
@@ -90,11 +92,18 @@ SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
     const double need =
         std::min({intervals.cl_spacing[i], intervals.cl_spacing[j], intervals.cl_spacing[k]});
     double r = ratio_of(gradient[t], need);
-    // Level lines that kink at a vertex (a chevron) lie farther apart at the kink than
-    // either triangle's own gradient says; the area-weighted mean gradient there sees it.
+    // Level lines that kink at a vertex (a chevron) leave a wider gap at the kink than
+    // either arm's spacing d: with the arms' normals 2 phi apart, the point of the gap
+    // farthest from both lines is d / (1 + cos phi) from them, against d / 2 between
+    // straight lines. The area-weighted mean gradient there is shorter than each arm's by
+    // cos phi, so the spacing at the kink is 2 step / (|own| + |mean|).
     for (const auto v : {i, j, k}) {
       if (vertex_area[v] > 0.0) {
-        r = std::max(r, ratio_of(vertex_sum[v] / vertex_area[v], intervals.cl_spacing[v]));
+        const double mean = (vertex_sum[v] / vertex_area[v]).norm();
+        const double own = vertex_length[v] / vertex_area[v];
+        if (own + mean > 0.0) {
+          r = std::max(r, 2.0 * step / (own + mean) / intervals.cl_spacing[v]);
+        }
       }
     }
     out.ratio[t] = std::isfinite(r) ? r : 0.0;

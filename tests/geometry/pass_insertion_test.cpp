@@ -4,8 +4,10 @@
 
 #include "geometry/pass_insertion.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 using namespace subfeed::geometry;
 
@@ -83,8 +85,11 @@ TEST_CASE("a chevron's kink is seen: lines farther apart there than either side'
   for (const auto& p : g.points) {
     phi.push_back(p.y() - std::abs(p.x() - 1.0)); // lines kink along x = 1
   }
-  // Each triangle's own gradient has length sqrt(2): lines 1/sqrt(2) apart per unit step,
-  // but along the kink they are a whole unit apart.
+  // Each triangle's own gradient has length sqrt(2): lines 1/sqrt(2) apart per unit step.
+  // At the kink the lines are a whole unit apart vertically, and the point of the gap
+  // farthest from both (on the kink, below the upper line's corner) is
+  // 1 / (1 + sqrt(2)) from each: the lines are as far apart as straight lines
+  // 2 / (1 + sqrt(2)) apart, not a whole unit.
   const auto ratios = spacing_ratios(g.points, g.triangles, phi, 1.0, needing(phi.size(), 0.8));
   double at_kink = 0.0, away = 0.0;
   for (std::size_t t = 0; t < g.triangles.size(); ++t) {
@@ -95,7 +100,39 @@ TEST_CASE("a chevron's kink is seen: lines farther apart there than either side'
     (touches ? at_kink : away) = std::max(touches ? at_kink : away, ratios.ratio[t]);
   }
   CHECK(away == Approx(1.0 / std::sqrt(2.0) / 0.8).epsilon(1e-9));
-  CHECK(at_kink == Approx(1.0 / 0.8).epsilon(1e-9));
+  CHECK(at_kink == Approx(2.0 / (1.0 + std::sqrt(2.0)) / 0.8).epsilon(1e-9));
+}
+
+TEST_CASE("the gap a chevron leaves is what the distances to its lines say") {
+  // Lines y = c + a |x - 1|, one unit apart in c: the widest gap between two of them, found
+  // by brute force over points between, is half the spacing that straight lines with the
+  // same gap would have. The kink's ratio must say that spacing, not more and not less.
+  const double a = 0.5;
+  const auto to_line = [&](double px, double py, double c) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const double side : {1.0, -1.0}) {
+      const Eigen::Vector2d dir = Eigen::Vector2d(side, a).normalized();
+      const Eigen::Vector2d rel(px - 1.0, py - c);
+      const double t = std::max(0.0, rel.dot(dir));
+      best = std::min(best, (rel - t * dir).norm());
+    }
+    return best;
+  };
+  double gap = 0.0;
+  for (int i = 0; i <= 2000; ++i) {
+    for (int j = -200; j <= 200; ++j) {
+      const double px = 1.0 + j / 400.0, py = i / 2000.0;
+      gap = std::max(gap, std::min(to_line(px, py, 0.0), to_line(px, py, 1.0)));
+    }
+  }
+  const auto g = flat_grid(21, 0.1);
+  std::vector<double> phi;
+  for (const auto& p : g.points) {
+    phi.push_back(p.y() - a * std::abs(p.x() - 1.0));
+  }
+  const auto ratios = spacing_ratios(g.points, g.triangles, phi, 1.0, needing(phi.size(), 0.8));
+  const double widest = std::ranges::max(ratios.ratio);
+  CHECK(widest == Approx(2.0 * gap / 0.8).epsilon(1e-3));
 }
 
 TEST_CASE("inserted passes reach a margin past where they are needed") {

@@ -36,8 +36,10 @@ inline constexpr int max_insertion_depth = 4;
 // How far apart the level lines of `deformed` (spaced `step`) lie on each triangle of the CL
 // mesh c against the least spacing its vertices need (> 1: too far apart); 0 where
 // unreachable or no level crosses. Per triangle the larger of its own gradient's spacing and
-// that of the area-weighted mean gradient at each of its vertices, which sees lines that
-// kink between triangles.
+// the spacing at a kink at each of its vertices: lines that kink leave a gap there as wide
+// as straight lines 2 step / (|gradient| + |mean gradient|) apart (area-weighted means over
+// the vertex's triangles): for arms d apart whose normals differ by 2 phi, 2 d / (1 + cos
+// phi), less than the d / cos phi the mean gradient alone says.
 struct SpacingRatios {
   std::vector<double> ratio;
   double worst = 0.0;
