@@ -138,7 +138,7 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
                                      const std::vector<std::array<int, 3>>& triangles,
                                      const Eigen::Vector3d& s, const PassIntervals& intervals,
                                      int max_iterations, double insertion_margin, double allowance,
-                                     const SolveProgress& on_solve) {
+                                     const SolveProgress& on_solve, const NeedAcross& need_across) {
   Deformation d = iso_planar(c, s, intervals);
   const int n = static_cast<int>(c.size());
   const auto edges = mesh_edges(triangles);
@@ -157,6 +157,7 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   Eigen::VectorXd rhs(n);
   std::vector<double> deformed;
   double cheapest = std::numeric_limits<double>::infinity();
+  PassIntervals measured_against = intervals;
   for (d.iterations = 1; d.iterations <= max_iterations; ++d.iterations) {
     if (on_solve) {
       on_solve(d.iterations, max_iterations);
@@ -175,7 +176,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
     const Eigen::VectorXd x = solver.solve(rhs);
     deformed.assign(x.data(), x.data() + n);
     const auto planes = space_planes(deformed, d.reference);
-    const auto measured = spacing_ratios(c, triangles, deformed, planes.step, intervals);
+    if (need_across) {
+      measured_against.cl_spacing = need_across(vertex_gradients(c, triangles, deformed));
+    }
+    const auto measured = spacing_ratios(c, triangles, deformed, planes.step, measured_against);
     auto insertion = pass_insertion(c, triangles, measured,
                                     level_lengths(path_points, triangles, deformed, planes.step),
                                     insertion_margin, allowance);

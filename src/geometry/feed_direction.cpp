@@ -23,8 +23,11 @@ Expected<Deformation> deform_along(const SurfaceMesh& mesh,
   const Eigen::Vector3d s = slicing_normal_for(direction_deg);
   const auto intervals = pass_intervals(mesh, p.ball_radius, p.scallop, s);
   const double margin = p.insertion_margin.value_or(std::ranges::max(intervals.cl_spacing));
+  const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
+    return cl_spacing_across(mesh, p.ball_radius, p.scallop, across, intervals.cl_spacing);
+  };
   return deform_cl_mesh(cl_points, path_points, mesh.triangles, s, intervals, solves, margin,
-                        p.spacing_allowance, on_solve);
+                        p.spacing_allowance, on_solve, need);
 }
 
 // Whether `other` is cheaper than the axis's `axis_length` by more than the preference.

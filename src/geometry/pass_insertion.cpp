@@ -47,6 +47,29 @@ Eigen::Vector3d level_gradient(const Eigen::Vector3d& ci, const Eigen::Vector3d&
   return (d1 * e2.cross(normal) + d2 * normal.cross(e1)) / area2;
 }
 
+std::vector<Eigen::Vector3d> vertex_gradients(const std::vector<Eigen::Vector3d>& p,
+                                              const std::vector<std::array<int, 3>>& triangles,
+                                              const std::vector<double>& deformed) {
+  std::vector<Eigen::Vector3d> sum(p.size(), Eigen::Vector3d::Zero());
+  std::vector<double> area(p.size(), 0.0);
+  for (const auto& t : triangles) {
+    const auto [i, j, k] = corners(t);
+    const double a = 0.5 * (p[j] - p[i]).cross(p[k] - p[i]).norm();
+    const Eigen::Vector3d g =
+        a * level_gradient(p[i], p[j], p[k], deformed[i], deformed[j], deformed[k]);
+    for (const auto v : {i, j, k}) {
+      sum[v] += g;
+      area[v] += a;
+    }
+  }
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    if (area[v] > 0.0) {
+      sum[v] /= area[v];
+    }
+  }
+  return sum;
+}
+
 std::vector<double> level_lengths(const std::vector<Eigen::Vector3d>& p,
                                   const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<double>& deformed, double step) {

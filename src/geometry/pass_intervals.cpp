@@ -54,4 +54,21 @@ PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h, const 
   return out;
 }
 
+std::vector<double> cl_spacing_across(const SurfaceMesh& mesh, double r, double h,
+                                      const std::vector<Eigen::Vector3d>& across,
+                                      const std::vector<double>& fallback) {
+  std::vector<double> out = fallback;
+  const double flat = flat_step(r, h);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Eigen::Vector3d& n = mesh.normals[i];
+    const Eigen::Vector3d t = across[i] - across[i].dot(n) * n;
+    if (t.norm() <= 1e-9 * std::max(across[i].norm(), 1e-300)) {
+      continue;
+    }
+    const double rho = mesh.radius_along(static_cast<int>(i), t.normalized());
+    out[i] = std::abs(rho) < flat_radius ? cl_step(r, h, rho) : flat;
+  }
+  return out;
+}
+
 } // namespace subfeed::geometry

@@ -79,10 +79,13 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   } else if (choice.solved_in_full) {
     planner.deformation_ = std::move(choice.deformation);
   } else {
+    const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
+      return cl_spacing_across(m, r, options.scallop, across, intervals.cl_spacing);
+    };
     SUBFEED_TRY_ASSIGN(planner.deformation_,
                        deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_,
                                       intervals, options.refine_iterations, insertion_margin,
-                                      options.spacing_allowance, progress));
+                                      options.spacing_allowance, progress, need));
   }
   auto& s = planner.summary_;
   s.rate = m.rate;

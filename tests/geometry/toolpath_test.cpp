@@ -5,7 +5,9 @@
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
+#include "geometry/pass_intervals.hpp"
 #include "geometry/path_verifier.hpp"
+#include "geometry/step_over.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/toolpath_planner.hpp"
 #include "support/grid_cage.hpp"
@@ -81,6 +83,30 @@ TEST_CASE("curvature radii of the exact bowl and saddle at their centre") {
           Approx(-1.0 / (2 * a)).epsilon(1e-9));
     CHECK(mesh->radius_along(centre, Eigen::Vector3d::UnitY()) ==
           Approx(-1.0 / (2 * b)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("the spacing across bent passes follows the curvature across them") {
+  // At the centre of z = a x^2 + b y^2 the normal curvature along unit (cos t, sin t) is
+  // 2 (a cos^2 t + b sin^2 t): passes whose spacing runs along it need the step of that
+  // radius, whatever the planes' direction was.
+  const double a = 0.02, b = 0.005;
+  const auto cage = subfeed::testing::grid_cage(9, 5.0, a, b);
+  const auto surface = surface_of(cage);
+  const auto mesh = geometry::mesh_surface(cage, surface, 4);
+  REQUIRE(mesh);
+  const int centre = nearest_vertex(*mesh, Eigen::Vector3d::Zero());
+  const auto n = static_cast<std::size_t>(mesh->vertex_count());
+  const std::vector<double> fallback(n, 7.0);
+  for (const double t : {0.0, 0.5, 1.2, std::numbers::pi / 2}) {
+    std::vector<Eigen::Vector3d> across(n, Eigen::Vector3d::Zero());
+    across[static_cast<std::size_t>(centre)] = {std::cos(t), std::sin(t), 0.3}; // off the plane
+    const auto spacing = geometry::cl_spacing_across(*mesh, 3.0, 0.01, across, fallback);
+    const double rho =
+        -1.0 / (2.0 * (a * std::cos(t) * std::cos(t) + b * std::sin(t) * std::sin(t)));
+    CHECK(spacing[static_cast<std::size_t>(centre)] ==
+          Approx(geometry::cl_step(3.0, 0.01, rho)).epsilon(1e-9));
+    CHECK(spacing[0] == 7.0); // no direction given: the fallback
   }
 }
 

@@ -3,9 +3,9 @@
 // gets a deformed coordinate xi' along the slicing normal s with d(xi')/d(xi) = eta =
 // reference / interval, solved over the whole mesh as sparse least squares over its edges
 // (one vertex anchored per connected piece; Eigen's sparse LDLT). Edges weigh by how far
-// they run across the passes, so that the passes bend where the need changes along them. Planes equally spaced by
-// `reference` in xi' then cut the original surface at the varying intervals each vertex
-// needs.
+// they run across the passes, so that the passes bend where the need changes along them. Planes
+// equally spaced by `reference` in xi' then cut the original surface at the varying intervals each
+// vertex needs.
 //
 // Being first order, the result is measured: on every triangle the spacing between the
 // level lines of xi' (the passes) is compared with the spacing its vertices need, eta is
@@ -38,6 +38,10 @@ struct PlaneSpacing {
 // Told of each solve as it is made (1-based) and the most there may be.
 using SolveProgress = std::function<void(int solve, int most)>;
 
+// The CL spacing each vertex needs across passes whose spacing runs along the given
+// direction per vertex (pass_intervals.hpp's cl_spacing_across for one mesh and tool).
+using NeedAcross = std::function<std::vector<double>(const std::vector<Eigen::Vector3d>&)>;
+
 struct Deformation {
   std::vector<double> xi;       // s . c per CL vertex, mm
   std::vector<double> deformed; // xi' per CL vertex, mm
@@ -51,13 +55,14 @@ struct Deformation {
 
 // `path_points` are where the tool's path runs, vertex for vertex (the tool tips: the design
 // mesh for a tool along the normal, the ball centres for a fixed axis): a solve is priced
-// by the length of its passes there, the length the machine cuts.
-[[nodiscard]] Expected<Deformation>
-deform_cl_mesh(const std::vector<Eigen::Vector3d>& cl_points,
-               const std::vector<Eigen::Vector3d>& path_points,
-               const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
-               const PassIntervals& intervals, int max_iterations, double insertion_margin,
-               double allowance, const SolveProgress& on_solve = {});
+// by the length of its passes there, the length the machine cuts. With `need_across`, each
+// solve's passes are measured against the spacing needed across them as they run (they
+// bend away from the planes' direction), else against `intervals`.
+[[nodiscard]] Expected<Deformation> deform_cl_mesh(
+    const std::vector<Eigen::Vector3d>& cl_points, const std::vector<Eigen::Vector3d>& path_points,
+    const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
+    const PassIntervals& intervals, int max_iterations, double insertion_margin, double allowance,
+    const SolveProgress& on_solve = {}, const NeedAcross& need_across = {});
 
 // The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval, with
 // nothing inserted.

@@ -49,6 +49,13 @@ struct SpacingRatios {
                                            const std::vector<double>& deformed, double step,
                                            const PassIntervals& intervals);
 
+// The area-weighted mean gradient of `deformed` at each vertex of the mesh (1/mm times
+// the field's unit): the direction across its level lines there.
+[[nodiscard]] std::vector<Eigen::Vector3d>
+vertex_gradients(const std::vector<Eigen::Vector3d>& points,
+                 const std::vector<std::array<int, 3>>& triangles,
+                 const std::vector<double>& deformed);
+
 // mm of level lines of `deformed` (spaced `step`) on each triangle of the mesh with these
 // points, by the co-area formula: area * |gradient| / step.
 [[nodiscard]] std::vector<double> level_lengths(const std::vector<Eigen::Vector3d>& points,

@@ -26,4 +26,13 @@ struct PassIntervals {
                                            double scallop, const Eigen::Vector3d& slicing_normal,
                                            double min_fraction = 0.05);
 
+// The CL spacing each vertex needs across passes whose spacing runs along `across` (a
+// direction per vertex, projected into the tangent plane there): passes that bend run
+// across the surface in other directions than the planes, and the curvature across them
+// is what sets the step. Where `across` is zero or normal to the surface, `fallback`.
+[[nodiscard]] std::vector<double> cl_spacing_across(const SurfaceMesh& mesh, double ball_radius,
+                                                    double scallop,
+                                                    const std::vector<Eigen::Vector3d>& across,
+                                                    const std::vector<double>& fallback);
+
 } // namespace subfeed::geometry
