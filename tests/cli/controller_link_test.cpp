@@ -2,12 +2,12 @@
 // an alarm the control raises is named in the one error line the sender prints.
 
 #include "controller_link.hpp"
+#include "support/fanuc_alarm.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <chrono>
 #include <string_view>
-#include <thread>
 
 using namespace subfeed;
 using namespace subfeed::cli;
@@ -26,14 +26,6 @@ Link fanuc_link() {
   return std::move(*link);
 }
 
-// Waits (up to 5 s) until the control's screen shows an alarm.
-std::string alarm_shown(const Link& link) {
-  for (int i = 0; i < 500 && link.control->stats().alarm.empty(); ++i) {
-    std::this_thread::sleep_for(10ms);
-  }
-  return link.control->stats().alarm;
-}
-
 } // namespace
 
 TEST_CASE("an error names the alarm the simulated control shows", "[pty]") {
@@ -42,7 +34,7 @@ TEST_CASE("an error names the alarm the simulated control shows", "[pty]") {
   CHECK(with_simulated_alarm(held, link).message == held.message); // no alarm yet
   constexpr std::string_view tape = "G01 X1.0 F600,\n"; // ',' is not an ISO 840 character
   REQUIRE(drivers::write_all(*link.transport, tape, 1s).has_value());
-  REQUIRE(alarm_shown(link) == "TH character ','");
+  REQUIRE(subfeed::testing::alarm_within(*link.control, 5s) == "TH character ','");
   const Error shown = with_simulated_alarm(held, link);
   CHECK(shown.message == held.message + "; the simulated control shows alarm TH character ','");
   CHECK(shown.code == ErrorCode::machine_fault);
