@@ -104,7 +104,8 @@ void bench_path_lengths(const std::filesystem::path& dir) {
         geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/" + part.name + ".obj")
             .value();
     const auto surface = geometry::LimitSurface::build(cage).value();
-    // Feed along X, its --baseline, and the direction chosen (--direction auto).
+    // Feed along X, its --baseline, and the pattern chosen (--direction auto: a direction or
+    // concentric rings).
     double ratio[3] = {0.0, 0.0, 0.0};
     for (const int k : {0, 1, 2}) {
       const auto file = dir / fmt::format("{}-{}.cl", part.name, k);
@@ -115,7 +116,14 @@ void bench_path_lengths(const std::filesystem::path& dir) {
       const auto report = geometry::verify_path(surface, file, verify).value();
       ratio[k] = report.cutting_length / report.ideal_length;
       if (k == 2) {
-        std::printf("  %s: --direction auto chose %g deg\n", part.name, run.summary.direction_deg);
+        if (run.summary.rings) {
+          std::printf("  %s: --direction auto chose concentric rings (%.0f mm predicted against "
+                      "%.0f mm of parallel passes)\n",
+                      part.name, run.summary.ring_price, run.summary.parallel_price);
+        } else {
+          std::printf("  %s: --direction auto chose %g deg\n", part.name,
+                      run.summary.direction_deg);
+        }
       }
     }
     bench::report(

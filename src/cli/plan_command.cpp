@@ -52,7 +52,8 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   const auto& s = planner.summary();
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,
                        s.passes, s.points, s.cut_length, s.link_length,
-                       o.plan.baseline ? "iso-planar baseline" : "deformed CL surface"));
+                       o.plan.baseline ? "iso-planar baseline"
+                                       : (s.rings ? "concentric rings" : "deformed CL surface")));
   if (s.stay_down_links > 0) {
     log.info(fmt::format("  {} of the {} links stay down: {:.1f} mm by feed along the surface "
                          "(in the cutting length), the rest retract",
@@ -62,14 +63,23 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                        "interval {:.4f}..{:.4f} mm; {} planes {:.4f} mm apart{}",
                        s.mesh_vertices, s.mesh_triangles, s.rate, s.min_interval, s.max_interval,
                        s.planes, s.reference, o.plan.baseline ? "" : " in deformed space"));
-  if (!o.plan.baseline) {
+  const std::string inserted =
+      s.inserted_depth > 0 ? fmt::format("; passes inserted there down to 1/{} of a plane step",
+                                         1 << s.inserted_depth)
+                           : std::string();
+  if (s.rings) {
+    std::string centres;
+    for (const auto& c : s.ring_centres) {
+      centres += fmt::format("{}({:.2f}, {:.2f}, {:.2f})", centres.empty() ? "" : ", ", c.x(),
+                             c.y(), c.z());
+    }
+    log.info(fmt::format("  concentric rings about {}, {} marches of the front; ring spacing up "
+                         "to {:.3f} of the need{}",
+                         centres, s.solves, s.worst_spacing_ratio, inserted));
+  } else if (!o.plan.baseline) {
     log.info(fmt::format("  deformation: solve {} of {} kept (the shortest path), pass spacing up "
                          "to {:.3f} of the need{}",
-                         s.chosen_solve, s.solves, s.worst_spacing_ratio,
-                         s.inserted_depth > 0
-                             ? fmt::format("; passes inserted there down to 1/{} of a plane step",
-                                           1 << s.inserted_depth)
-                             : std::string()));
+                         s.chosen_solve, s.solves, s.worst_spacing_ratio, inserted));
   }
   if (!s.direction_prices.empty()) {
     std::string prices;
@@ -81,6 +91,10 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
     }
     log.info(fmt::format("  feed direction {:g} deg, chosen by predicted cutting: {}",
                          s.direction_deg, prices));
+    log.info(fmt::format("  {} by predicted cutting: rings {:.0f} mm against {:.0f} mm of "
+                         "parallel passes",
+                         s.rings ? "concentric rings cut" : "parallel passes kept", s.ring_price,
+                         s.parallel_price));
   }
   report_unreachable(s, log);
   return {};

@@ -23,7 +23,8 @@ Expected<double> direction_deg(const std::string& text) {
     }
   } catch (const std::exception&) {
   }
-  return fail(ErrorCode::usage, "'" + text + "': expected x, y, auto or an angle in degrees",
+  return fail(ErrorCode::usage,
+              "'" + text + "': expected x, y, auto, concentric or an angle in degrees",
               {{}, 0, "--direction"});
 }
 
@@ -39,7 +40,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
   options.ball_radius = radius;
   options.scallop = o.scallop;
   options.choose_direction = o.direction == "auto";
-  if (!options.choose_direction) {
+  if (o.direction == "concentric") {
+    options.pattern = geometry::PassPattern::concentric;
+  } else if (!options.choose_direction) {
     SUBFEED_TRY_ASSIGN(options.direction_deg, direction_deg(o.direction));
   }
   options.baseline = o.baseline;
@@ -64,8 +67,10 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
 void add_plan_flags(CLI::App& cmd, PlanFlags& o, bool required) {
   cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required(required);
   cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required(required);
-  cmd.add_option("--direction", o.direction,
-                 "Feed direction: x, y, degrees from X, or auto (the shortest predicted path)");
+  cmd.add_option(
+      "--direction", o.direction,
+      "Feed direction: x, y, degrees from X, concentric (rings about the highest point) or auto "
+      "(the shortest predicted path, rings included)");
   cmd.add_flag("--baseline", o.baseline, "Constant-interval iso-planar passes for comparison");
   cmd.add_option("--axis-radius", o.axis_radius,
                  "Tool axis averaging radius zeta, mm (default: ball radius)")

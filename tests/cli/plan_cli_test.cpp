@@ -50,6 +50,23 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
   CHECK(chosen.out.find("  feed direction ") != std::string::npos);
   CHECK(chosen.out.find(" deg, chosen by predicted cutting: 0 deg ") != std::string::npos);
   CHECK(chosen.out.find(" mm, 45 deg ") != std::string::npos);
+  CHECK(chosen.out.find("  parallel passes kept by predicted cutting: rings ") !=
+        std::string::npos);
+}
+
+TEST_CASE("plan --direction concentric cuts rings about the dome's top", "[slow]") {
+  TempDir dir;
+  const auto cl = (dir.path() / "dome.cl").string();
+  const auto cage = source_dir + "/examples/dome.obj";
+  const auto plan = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.03",
+                                 "--tolerance", "0.002", "--direction", "concentric", "-o", cl});
+  REQUIRE(plan.exit_code == 0);
+  CHECK(plan.out.find("(concentric rings)") != std::string::npos);
+  CHECK(plan.out.find("  concentric rings about (0.00, 0.00, ") != std::string::npos);
+  const auto verify = run_process(
+      {bin, "verify", cage, cl, "--tool", "ball:6", "--scallop", "0.03", "--spacing", "0.3"});
+  CHECK(verify.exit_code == 0);
+  CHECK(verify.out.find("scallop max 0.03") != std::string::npos); // within 5 % of 0.03
 }
 
 TEST_CASE("plan shows its progress on a terminal and erases it before the summary", "[pty]") {
@@ -105,8 +122,9 @@ TEST_CASE("plan refuses a bad tool, scallop, direction, stay-down or cage in one
   const auto direction =
       run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.01", "--direction", "z"});
   CHECK(direction.exit_code == 1);
-  CHECK(direction.err ==
-        "subfeed: error: --direction: 'z': expected x, y, auto or an angle in degrees\n");
+  CHECK(
+      direction.err ==
+      "subfeed: error: --direction: 'z': expected x, y, auto, concentric or an angle in degrees\n");
   const auto stay_down = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.01",
                                       "--stay-down", "-1", "-o", (dir.path() / "s.cl").string()});
   CHECK(stay_down.exit_code == 1);

@@ -4,6 +4,8 @@
 
 #include "geometry/pass_insertion.hpp"
 
+#include "support/uniform_need.hpp"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -37,12 +39,7 @@ Grid flat_grid(int n, double h) {
 }
 
 PassIntervals needing(std::size_t vertices, double spacing) {
-  PassIntervals in;
-  in.cl_spacing.assign(vertices, spacing);
-  in.plane_interval.assign(vertices, spacing);
-  in.reachable.assign(vertices, 1);
-  in.min_interval = in.max_interval = spacing;
-  return in;
+  return subfeed::testing::uniform_need(vertices, spacing);
 }
 
 } // namespace

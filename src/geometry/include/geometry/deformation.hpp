@@ -51,6 +51,9 @@ struct Deformation {
   int iterations = 0;       // solves made
   int chosen = 0;           // the solve kept (1-based)
   double worst_ratio = 0.0; // largest measured/needed spacing of the kept solve
+  // Rings about these vertices (concentric_field.hpp) instead of planes along s; xi is
+  // then empty and iterations count the front's marches.
+  std::vector<int> ring_centres;
 };
 
 // `path_points` are where the tool's path runs, vertex for vertex (the tool tips: the design

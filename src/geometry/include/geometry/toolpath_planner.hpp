@@ -19,6 +19,8 @@
 //  8. points along a pass reduced to half the chordal tolerance; passes zig-zag or one way, linked
 //     by a retract along the tool axis, a rapid and a plunge; last, one pass along every
 //     boundary of the surface, which the slicing planes meet at an angle.
+// With PassPattern::concentric, steps 4 and 5 are rings about the highest point instead
+// (concentric_field.hpp), their inserted pieces cut after them nearest first.
 // With `baseline` the planes are spaced evenly at the smallest interval instead (plain
 // iso-planar passes with the same worst-case scallop), for comparison.
 
@@ -39,7 +41,13 @@
 
 namespace subfeed::geometry {
 
+// Parallel passes follow a feed direction; concentric ones are rings about the highest
+// point (concentric_field.hpp). With choose_direction, rings are set against the chosen
+// direction's passes and cut where predicted shorter.
+enum class PassPattern { parallel, concentric };
+
 struct PlanOptions {
+  PassPattern pattern = PassPattern::parallel;
   double ball_radius = 3.0;   // mm
   double scallop = 0.01;      // mm
   double direction_deg = 0.0; // feed direction in the XY plane, from +X
@@ -73,6 +81,10 @@ struct PlanOptions {
 struct PlanSummary {
   double direction_deg = 0.0;                   // the feed direction cut
   std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
+  bool rings = false;                           // concentric passes were cut
+  std::vector<Eigen::Vector3d> ring_centres;    // their sources (one per piece), mm
+  double ring_price = 0.0;     // predicted cutting of rings, mm, when set against the
+  double parallel_price = 0.0; // chosen direction's passes (choose_direction)
   int rate = 0;
   long mesh_vertices = 0;
   long mesh_triangles = 0;
@@ -130,6 +142,9 @@ private:
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
                                          const PointGrid& design);
+  // Each pass in turn the one that starts (or, zig-zag, ends) nearest the tool.
+  [[nodiscard]] Expected<void> emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
+                                                  const Sink& sink, const PointGrid& design);
   [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink,
                                        const PointGrid& design);
   // The feed poses between `end` and `start` (both excluded) of a link that stays down, or
