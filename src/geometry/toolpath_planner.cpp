@@ -92,7 +92,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   };
   // Inserted pieces between rings lie behind what the front goes round, short and far
   // from each other: each runs one narrowest spacing past where it is needed, not the
-  // widest (on the dome 1.5 % of the cutting, scallop unchanged).
+  // widest of the whole part (on the dome the two cut within 0.1 % of each other, the
+  // scallop unchanged; 0.2 mm cut 1.3 % shorter, a margin below the need itself).
   double narrowest = widest;
   for (std::size_t v = 0; v < intervals.cl_spacing.size(); ++v) {
     if (intervals.reachable[v] != 0) {
