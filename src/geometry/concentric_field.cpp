@@ -2,25 +2,15 @@
 
 #include "geometry/front_arrival.hpp"
 #include "geometry/pass_insertion.hpp"
+#include "geometry/vertex_groups.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <numeric>
 
 namespace subfeed::geometry {
 
 namespace {
-
-// Union-find root with path halving.
-int root(std::vector<int>& parent, int v) {
-  while (parent[static_cast<std::size_t>(v)] != v) {
-    auto& p = parent[static_cast<std::size_t>(v)];
-    p = parent[static_cast<std::size_t>(p)];
-    v = p;
-  }
-  return v;
-}
 
 // The time per mm of deformed coordinate: reference / the CL spacing needed (in a hollow
 // the ball cannot reach, the flat spacing: filling in the surroundings' need there instead
@@ -61,12 +51,10 @@ void clear_centres(const std::vector<std::array<int, 3>>& triangles, const Defor
 std::vector<int> highest_points(const std::vector<Eigen::Vector3d>& p,
                                 const std::vector<std::array<int, 3>>& triangles,
                                 const std::vector<char>& reachable) {
-  std::vector<int> parent(p.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  VertexGroups pieces(p.size());
   for (const auto& t : triangles) {
-    const int a = root(parent, t[0]);
     for (const int v : {t[1], t[2]}) {
-      parent[static_cast<std::size_t>(root(parent, v))] = a;
+      pieces.join(static_cast<std::size_t>(v), static_cast<std::size_t>(t[0]));
     }
   }
   std::vector<int> best(p.size(), -1); // per piece's root
@@ -74,7 +62,7 @@ std::vector<int> highest_points(const std::vector<Eigen::Vector3d>& p,
     if (reachable[v] == 0) {
       continue;
     }
-    auto& b = best[static_cast<std::size_t>(root(parent, static_cast<int>(v)))];
+    auto& b = best[pieces.root(v)];
     if (b < 0 || p[v].z() > p[static_cast<std::size_t>(b)].z()) {
       b = static_cast<int>(v);
     }

@@ -1,10 +1,11 @@
 #include "geometry/front_arrival.hpp"
 
+#include "geometry/vertex_triangles.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numeric>
 #include <queue>
 #include <utility>
 
@@ -46,22 +47,7 @@ std::vector<double> front_arrival(const std::vector<Eigen::Vector3d>& p,
                                   const std::vector<double>& slowness,
                                   const std::vector<int>& sources) {
   const std::size_t n = p.size();
-  std::vector<int> start(n + 1, 0);
-  for (const auto& t : triangles) {
-    for (const int v : t) {
-      ++start[static_cast<std::size_t>(v) + 1];
-    }
-  }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<int> around(static_cast<std::size_t>(start.back()));
-  {
-    auto fill = start;
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-      for (const int v : triangles[i]) {
-        around[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(i);
-      }
-    }
-  }
+  const auto [start, around] = vertex_triangles(triangles, n);
   std::vector<double> time(n, never);
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <numeric>
 #include <unordered_map>
 
 namespace subfeed::geometry {
@@ -161,21 +160,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
 // Triangles around each vertex (for the clearance check), centroids and area normals (for the
 // tool axis) and the longest edge (how far a vertex search must reach).
 void ToolpathPlanner::index_triangles() {
-  std::vector<int> uses(static_cast<std::size_t>(mesh_.vertex_count()) + 1, 0);
-  for (const auto& t : mesh_.triangles) {
-    for (const int v : t) {
-      ++uses[static_cast<std::size_t>(v) + 1];
-    }
-  }
-  std::partial_sum(uses.begin(), uses.end(), uses.begin());
-  vertex_triangle_start_ = uses;
-  vertex_triangles_.resize(static_cast<std::size_t>(uses.back()));
-  for (std::size_t i = 0; i < mesh_.triangles.size(); ++i) {
-    for (const int v : mesh_.triangles[i]) {
-      vertex_triangles_[static_cast<std::size_t>(uses[static_cast<std::size_t>(v)]++)] =
-          static_cast<int>(i);
-    }
-  }
+  around_ = vertex_triangles(mesh_.triangles, static_cast<std::size_t>(mesh_.vertex_count()));
   for (const auto& t : mesh_.triangles) {
     const auto& p0 = mesh_.points[static_cast<std::size_t>(t[0])];
     const auto& p1 = mesh_.points[static_cast<std::size_t>(t[1])];
@@ -402,9 +387,9 @@ double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vec
     double lift = 0.0;
     design.within(at, reach, [&](int v) {
       const auto u = static_cast<std::size_t>(v);
-      for (int k = vertex_triangle_start_[u]; k < vertex_triangle_start_[u + 1]; ++k) {
+      for (int k = around_.start[u]; k < around_.start[u + 1]; ++k) {
         const auto& t = mesh_.triangles[static_cast<std::size_t>(
-            vertex_triangles_[static_cast<std::size_t>(k)])];
+            around_.triangles[static_cast<std::size_t>(k)])];
         const Eigen::Vector3d m =
             at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
                                      mesh_.points[static_cast<std::size_t>(t[1])],

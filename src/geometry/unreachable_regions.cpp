@@ -1,36 +1,16 @@
 #include "geometry/unreachable_regions.hpp"
 
+#include "geometry/vertex_groups.hpp"
+
 #include <algorithm>
 #include <map>
-#include <numeric>
 
 namespace subfeed::geometry {
-
-namespace {
-
-// Union-find over vertex indices, with path halving.
-class Groups {
-public:
-  explicit Groups(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t root(std::size_t i) {
-    while (parent_[i] != i) {
-      parent_[i] = parent_[parent_[i]];
-      i = parent_[i];
-    }
-    return i;
-  }
-  void join(std::size_t a, std::size_t b) { parent_[root(a)] = root(b); }
-
-private:
-  std::vector<std::size_t> parent_;
-};
-
-} // namespace
 
 std::vector<UnreachableRegion> unreachable_regions(const SurfaceMesh& mesh,
                                                    const std::vector<char>& reachable) {
   const auto blocked = [&](int v) { return reachable[static_cast<std::size_t>(v)] == 0; };
-  Groups groups(reachable.size());
+  VertexGroups groups(reachable.size());
   for (const auto& t : mesh.triangles) {
     for (int e = 0; e < 3; ++e) {
       const int a = t[static_cast<std::size_t>(e)], b = t[static_cast<std::size_t>((e + 1) % 3)];

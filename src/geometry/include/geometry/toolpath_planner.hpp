@@ -35,6 +35,7 @@
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/unreachable_regions.hpp"
+#include "geometry/vertex_triangles.hpp"
 
 #include <functional>
 #include <optional>
@@ -158,8 +159,8 @@ private:
   Eigen::Vector3d s_, feed_dir_;
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
-  std::vector<int> vertex_triangle_start_, vertex_triangles_; // triangles around each vertex
-  double longest_edge_ = 0.0;                                 // of the design mesh, mm
+  VertexTriangles around_;    // triangles around each vertex
+  double longest_edge_ = 0.0; // of the design mesh, mm
   Deformation deformation_;
   double chord_tolerance_ = 0.0;
   double safe_z_ = 0.0;
