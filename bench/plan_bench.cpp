@@ -116,7 +116,7 @@ void bench_path_lengths(const std::filesystem::path& dir) {
       const auto report = geometry::verify_path(surface, file, verify).value();
       ratio[k] = report.cutting_length / report.ideal_length;
       if (k == 2) {
-        if (run.summary.rings) {
+        if (run.summary.rings()) {
           std::printf("  %s: --direction auto chose concentric rings (%.0f mm predicted against "
                       "%.0f mm of parallel passes)\n",
                       part.name, run.summary.ring_price, run.summary.parallel_price);

@@ -53,7 +53,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,
                        s.passes, s.points, s.cut_length, s.link_length,
                        o.plan.baseline ? "iso-planar baseline"
-                                       : (s.rings ? "concentric rings" : "deformed CL surface")));
+                                       : (s.rings() ? "concentric rings" : "deformed CL surface")));
   if (s.stay_down_links > 0) {
     log.info(fmt::format("  {} of the {} links stay down: {:.1f} mm by feed along the surface "
                          "(in the cutting length), the rest retract",
@@ -67,7 +67,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
       s.inserted_depth > 0 ? fmt::format("; passes inserted there down to 1/{} of a plane step",
                                          1 << s.inserted_depth)
                            : std::string();
-  if (s.rings) {
+  if (s.rings()) {
     std::string centres;
     for (const auto& c : s.ring_centres) {
       centres += fmt::format("{}({:.2f}, {:.2f}, {:.2f})", centres.empty() ? "" : ", ", c.x(),
@@ -93,7 +93,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          s.direction_deg, prices));
     log.info(fmt::format("  {} by predicted cutting: rings {:.0f} mm against {:.0f} mm of "
                          "parallel passes",
-                         s.rings ? "concentric rings cut" : "parallel passes kept", s.ring_price,
+                         s.rings() ? "concentric rings cut" : "parallel passes kept", s.ring_price,
                          s.parallel_price));
   }
   report_unreachable(s, log);

@@ -128,8 +128,6 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
       }
     }
   }
-  const bool cut_rings = !planner.deformation_.ring_centres.empty();
-  planner.summary_.rings = cut_rings;
   for (const int v : planner.deformation_.ring_centres) {
     planner.summary_.ring_centres.push_back(m.points[static_cast<std::size_t>(v)]);
   }

@@ -121,7 +121,7 @@ TEST_CASE("sample part dome.obj as concentric rings at two scallop targets", "[p
     INFO("H " << h << ": rings max " << d.max_scallop << " gouge " << d.max_gouge << " cutting "
               << d.cutting_length << " L/L* " << d.cutting_length / d.ideal_length << " links "
               << rings.plan.link_length << "; parallel cutting " << parallel.report.cutting_length);
-    CHECK(rings.plan.rings);
+    CHECK(rings.plan.rings());
     CHECK(rings.plan.ring_centres.size() == 1);
     CHECK(d.max_scallop <= 1.05 * h);
     CHECK(d.max_scallop >= 0.5 * h);
@@ -131,7 +131,7 @@ TEST_CASE("sample part dome.obj as concentric rings at two scallop targets", "[p
   }
   const auto chosen =
       plan_part(cage, surface, 3.0, 0.01, false, dir, geometry::PassPattern::parallel, true);
-  CHECK(chosen.plan.rings);
+  CHECK(chosen.plan.rings());
   CHECK(chosen.plan.ring_price < chosen.plan.parallel_price);
 }
 
@@ -153,7 +153,7 @@ TEST_CASE("sample part seat.obj as concentric rings", "[parts][slow]") {
   const auto& d = rings.report;
   INFO("rings max " << d.max_scallop << " gouge " << d.max_gouge << " cutting " << d.cutting_length
                     << " L/L* " << d.cutting_length / d.ideal_length);
-  CHECK(rings.plan.rings);
+  CHECK(rings.plan.rings());
   CHECK(d.max_scallop <= 1.05 * 0.005);
   CHECK(d.max_gouge <= 1e-3);
 }

@@ -82,8 +82,7 @@ struct PlanOptions {
 struct PlanSummary {
   double direction_deg = 0.0;                   // the feed direction cut
   std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
-  bool rings = false;                           // concentric passes were cut
-  std::vector<Eigen::Vector3d> ring_centres;    // their sources (one per piece), mm
+  std::vector<Eigen::Vector3d> ring_centres;    // of concentric passes (one per piece), mm
   double ring_price = 0.0;     // predicted cutting of rings, mm, when set against the
   double parallel_price = 0.0; // chosen direction's passes (choose_direction)
   int rate = 0;
@@ -106,6 +105,8 @@ struct PlanSummary {
   double link_length = 0.0;      // mm of retracts, rapids and plunges
   long stay_down_links = 0;      // links made by feed along the surface
   double stay_down_length = 0.0; // mm of them (counted in cut_length)
+
+  [[nodiscard]] bool rings() const { return !ring_centres.empty(); } // concentric passes cut
 };
 
 class ToolpathPlanner {
