@@ -134,7 +134,32 @@ int LimitSurface::face_size(int face) const {
   return patches_->face_sizes.at(face);
 }
 
-Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const {
+namespace {
+
+// The sine of the angle between du and dv. Where it is this small the cross product is
+// rounding, not a direction: at an interpolated boundary's valence-2 corner du and dv are
+// parallel and their cross product came out horizontal, pointing into or out of the part
+// depending on the coordinates' magnitude (a dome lifted 20 mm had its corner normals turned
+// 90 degrees inward and its CL points 3 mm inside the part).
+constexpr double degenerate_sine = 1e-6;
+// Below this the first fundamental form is too ill-conditioned for curvature (its inverse
+// amplifies rounding by 1 / sine^2): evaluate_regular looks a hair inside instead.
+constexpr double regular_sine = 1e-3;
+// How far inside it looks for the derivatives and curvature where it must: at a valence-2
+// corner one principal curvature grows as 1 / distance (0.1 /mm a hundredth of the way in,
+// 1.1 /mm a ten-thousandth, on a 2 mm grid), so the corner point's own value is no value;
+// where du and dv are 3 degrees apart (a few hundredths of the way to the centre, the scale
+// of the mesh's cells round it) it is its neighbourhood's.
+constexpr double curvature_sine = 0.05;
+
+double tangent_sine(const LimitSample& s) {
+  const double scale = s.du.norm() * s.dv.norm();
+  return scale > 0.0 ? s.du.cross(s.dv).norm() / scale : 0.0;
+}
+
+} // namespace
+
+Expected<LimitSample> LimitSurface::sample(int face, double u, double v) const {
   if (!has_patch(face)) {
     return fail(ErrorCode::bad_input, "face " + std::to_string(face + 1) + " has no limit surface",
                 {patches_->source, 0, {}});
@@ -146,14 +171,18 @@ Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const
                    osd::Bfr::Surface<double>::PointDescriptor(3), s.point.data(), s.du.data(),
                    s.dv.data(), s.duu.data(), s.duv.data(), s.dvv.data());
   const Eigen::Vector3d cross = s.du.cross(s.dv);
-  const double length = cross.norm();
-  if (!(length > 1e-14 * std::max(1.0, s.du.norm() * s.dv.norm()))) {
+  s.normal = cross.norm() > 0.0 ? Eigen::Vector3d(cross.normalized()) : Eigen::Vector3d::Zero();
+  return s;
+}
+
+Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const {
+  SUBFEED_TRY_ASSIGN(auto s, sample(face, u, v));
+  if (!(tangent_sine(s) >= degenerate_sine)) {
     return fail(ErrorCode::bad_input,
                 "degenerate tangent plane on face " + std::to_string(face + 1) + " at (" +
                     std::to_string(u) + ", " + std::to_string(v) + ")",
                 {patches_->source, 0, {}});
   }
-  s.normal = cross / length;
   return s;
 }
 
@@ -162,11 +191,26 @@ Expected<LimitSample> LimitSurface::evaluate(int face, double u, double v) const
 namespace subfeed::geometry {
 
 Expected<LimitSample> LimitSurface::evaluate_regular(int face, double u, double v) const {
-  auto s = evaluate(face, u, v);
-  for (double nudge = 1e-7; !s && has_patch(face) && nudge <= 1e-3; nudge *= 10.0) {
-    s = evaluate(face, u + nudge * (0.5 - u), v + nudge * (0.5 - v));
+  SUBFEED_TRY_ASSIGN(const auto exact, sample(face, u, v));
+  if (tangent_sine(exact) >= regular_sine) {
+    return exact;
   }
-  return s;
+  // Toward the face's centre: the normal from the first sample where it is a direction (the
+  // limit of the neighbourhood's), the rest from the first where curvature means something.
+  std::optional<Eigen::Vector3d> normal;
+  for (double nudge = 1e-7; nudge <= 0.2; nudge *= 2.0) {
+    SUBFEED_TRY_ASSIGN(auto s, sample(face, u + nudge * (0.5 - u), v + nudge * (0.5 - v)));
+    const double sine = tangent_sine(s);
+    if (!normal && sine >= degenerate_sine) {
+      normal = s.normal;
+    }
+    if (sine >= curvature_sine) {
+      s.point = exact.point;
+      s.normal = *normal;
+      return s;
+    }
+  }
+  return evaluate(face, u, v);
 }
 
 FaceTessellation LimitSurface::tessellate(int face, int rate) const {

@@ -48,12 +48,16 @@ public:
   // Vertex count of the cage face, which decides Bfr's parameter domain for it.
   [[nodiscard]] int face_size(int face) const;
 
-  // (u, v) must lie in the face's domain; a degenerate tangent plane is an error.
+  // (u, v) must lie in the face's domain; a degenerate tangent plane (du and dv within
+  // 1e-6 rad of parallel, where their cross product is rounding) is an error.
   [[nodiscard]] Expected<LimitSample> evaluate(int face, double u, double v) const;
 
-  // As evaluate(), but where the tangent plane degenerates (a valence-2 corner of an
-  // interpolated boundary) the sample is taken a hair inside the face (at most 1e-3 of the
-  // way to its centre), which is the limit of its neighbourhood.
+  // As evaluate(), but where the tangent plane degenerates or is too ill-conditioned for
+  // curvature (du and dv within 1e-3 rad of parallel: a valence-2 corner of an interpolated
+  // boundary): the point stays exact, the normal is the limit of its neighbourhood's (a
+  // hair toward the face's centre), and the derivatives and curvature are the neighbourhood's
+  // at the scale of a mesh cell (where du and dv are 3 degrees apart, a few hundredths of the
+  // way to the centre), since the corner's own curvature grows without bound.
   [[nodiscard]] Expected<LimitSample> evaluate_regular(int face, double u, double v) const;
 
   // `rate` segments along each edge of the face (1..256); empty for a face without patch.
@@ -66,6 +70,8 @@ public:
 
 private:
   struct Patches;
+  // Bfr's evaluation as it is, the normal zero where du x dv is.
+  [[nodiscard]] Expected<LimitSample> sample(int face, double u, double v) const;
   explicit LimitSurface(std::unique_ptr<Patches> patches);
   std::unique_ptr<Patches> patches_;
 };
