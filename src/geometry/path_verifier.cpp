@@ -19,7 +19,8 @@ namespace subfeed::geometry {
 namespace {
 
 struct Path {
-  std::vector<Capsule> capsules;
+  std::vector<Capsule> capsules;                       // feed moves: the cut
+  std::vector<Capsule> links, rapids;                  // plunges and retracts; rapids
   std::vector<std::vector<Eigen::Vector2d>> passes_xy; // for the picture
 };
 
@@ -39,9 +40,11 @@ Expected<Path> read_path(const std::filesystem::path& file, double r, VerifyRepo
       const Eigen::Vector3d from_axis(last->axis[0], last->axis[1], last->axis[2]);
       const double length = (tip - from).norm();
       report.path_length += length;
-      if (pose->kind != cl::MoveKind::rapid) {
-        path.capsules.push_back({from + r * from_axis, tip + r * axis, r});
-      }
+      const Capsule swept{from + r * from_axis, tip + r * axis, r};
+      (pose->kind == cl::MoveKind::feed    ? path.capsules
+       : pose->kind == cl::MoveKind::rapid ? path.rapids
+                                           : path.links)
+          .push_back(swept);
       if (pose->kind == cl::MoveKind::feed) {
         report.cutting_length += length;
       }
@@ -190,6 +193,23 @@ double refine(Measurer& m, const Sample& s, double reach, double& gouge) {
   return std::max({s.height, f1, f2});
 }
 
+// How far the surface point p lies inside the sweep of the moves near it (0 outside).
+double depth_inside(const CapsuleGrid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                    double r, std::vector<Capsule>& near) {
+  grid.near(p, near);
+  return measure_scallop(p, n, near, r).gouge_depth;
+}
+
+void count_touch(double depth, const Eigen::Vector3d& p, MoveTouches& touches) {
+  if (depth > 1e-7) { // below 0.1 um: rounding of the CL data, as for gouges
+    ++touches.samples;
+    if (depth > touches.deepest) {
+      touches.deepest = depth;
+      touches.at = p;
+    }
+  }
+}
+
 } // namespace
 
 Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::filesystem::path& cl,
@@ -202,6 +222,8 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
   }
   // Rays look for material up to one radius above the surface.
   const CapsuleGrid grid(path.capsules, r, r);
+  const CapsuleGrid link_grid(path.links, r, r), rapid_grid(path.rapids, r, r);
+  std::vector<Capsule> near_moves;
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, grid, r, {}};
   std::vector<Sample> samples;
@@ -245,6 +267,10 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
       grid.near(s->point, m.near);
       const auto h = measure_scallop(s->point, s->normal, m.near, r);
       ++report.samples;
+      count_touch(depth_inside(link_grid, s->point, s->normal, r, near_moves), s->point,
+                  report.links);
+      count_touch(depth_inside(rapid_grid, s->point, s->normal, r, near_moves), s->point,
+                  report.rapids);
       const bool gouged = h.gouge_depth > 1e-7; // below 0.1 um: rounding of the CL data
       if (gouged) {
         ++report.gouges;

@@ -44,8 +44,8 @@ Eigen::Vector3d axis_of(const cl::ClPose& p) {
 
 } // namespace
 
-ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh)
-    : options_(std::move(options)), mesh_(std::move(mesh)) {}
+ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate)
+    : options_(std::move(options)), mesh_(std::move(mesh)), gate_(std::move(gate)) {}
 
 Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const LimitSurface& surface,
                                                    const PlanOptions& options,
@@ -53,7 +53,11 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
   const auto rates = rates_for_tolerance(surface, chord, options.max_rate);
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
-  ToolpathPlanner planner(options, std::move(mesh));
+  // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
+  const double gate_tolerance = options.gate_tolerance.value_or(std::max(1e-3, 2.5 * chord));
+  SUBFEED_TRY_ASSIGN(auto gate,
+                     MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}));
+  ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
   planner.chord_tolerance_ = chord;
   const auto& m = planner.mesh_;
   const double r = options.ball_radius;
@@ -226,6 +230,11 @@ std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& p
 }
 
 Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
+  if (auto checked = gate_.check(pose); !checked) {
+    rejected_ = pose;
+    return checked;
+  }
+  summary_.gate = gate_.report();
   if (last_) {
     const double d = (tip_of(pose) - tip_of(*last_)).norm();
     (pose.kind == cl::MoveKind::feed ? summary_.cut_length : summary_.link_length) += d;

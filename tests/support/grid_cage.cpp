@@ -25,6 +25,13 @@ geometry::Cage grid_cage(int n, double g, double a, double b) {
   return cage;
 }
 
+geometry::Cage lifted(geometry::Cage cage, double z0) {
+  for (auto& p : cage.positions) {
+    p.z() += z0;
+  }
+  return cage;
+}
+
 int grid_face(int n, int i, int j) {
   return j * (n - 1) + i;
 }

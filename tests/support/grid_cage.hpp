@@ -9,6 +9,9 @@ namespace subfeed::testing {
 
 [[nodiscard]] geometry::Cage grid_cage(int n, double g, double a, double b);
 
+// The same cage lifted by z0 (mm): the same part elsewhere on the machine's Z.
+[[nodiscard]] geometry::Cage lifted(geometry::Cage cage, double z0);
+
 // The grid's x and y of a parameter point (u, v) on face (i, j): interior faces of a uniform
 // bicubic B-spline map parameters linearly onto the grid.
 [[nodiscard]] int grid_face(int n, int i, int j);

@@ -17,4 +17,16 @@ namespace subfeed::geometry {
                                                   const Eigen::Vector3d& b,
                                                   const Eigen::Vector3d& c);
 
+// The nearest pair of points of a segment and a triangle: `on_segment` and `on_triangle`;
+// where the segment pierces the triangle both are the piercing point.
+struct SegmentTriangleNearest {
+  Eigen::Vector3d on_segment, on_triangle;
+  [[nodiscard]] double distance() const { return (on_segment - on_triangle).norm(); }
+};
+[[nodiscard]] SegmentTriangleNearest closest_segment_triangle(const Eigen::Vector3d& p,
+                                                              const Eigen::Vector3d& q,
+                                                              const Eigen::Vector3d& a,
+                                                              const Eigen::Vector3d& b,
+                                                              const Eigen::Vector3d& c);
+
 } // namespace subfeed::geometry

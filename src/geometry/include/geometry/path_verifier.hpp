@@ -1,9 +1,11 @@
 #pragma once
 // `subfeed verify`: measures what a CL path leaves on the limit surface, independently of
-// the planner (it reads only the cage's surface and the CL data). Dense samples of the
-// design surface are measured against the capsules the ball sweeps between consecutive
-// feed poses (scallop_meter.hpp); each sample is then pushed sideways, across the nearest
-// pass, to the local maximum so cusps between sample points are not missed.
+// the planner and of the motion gate (it reads only the cage's surface and the CL data).
+// Dense samples of the design surface are measured against the capsules the ball sweeps
+// between consecutive feed poses (scallop_meter.hpp); each sample is then pushed sideways,
+// across the nearest pass, to the local maximum so cusps between sample points are not
+// missed. The same samples are measured apart against the sweeps of plunges and retracts
+// (links) and of rapids, so that a link or rapid into the part is told from a cutting gouge.
 //
 // The ideal bound L* = integral of dA / w(h, rho) (METHOD.md §5) uses the measured worst
 // scallop as h (or the target when given), rho across the nearest pass, and w from the
@@ -28,15 +30,24 @@ struct VerifyOptions {
   std::optional<std::filesystem::path> png; // the same picture as PNG
 };
 
+// Samples of the surface inside the ball's sweep over moves that must not cut.
+struct MoveTouches {
+  long samples = 0;     // deeper than 0.1 um
+  double deepest = 0.0; // mm
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+};
+
 struct VerifyReport {
   long samples = 0;
   long uncut_samples = 0; // not reached by any ball within one radius above the surface
   double max_scallop = 0.0, mean_scallop = 0.0, p99_scallop = 0.0; // mm
   Eigen::Vector3d max_at = Eigen::Vector3d::Zero();                // where the worst scallop is, mm
-  long gouges = 0;
-  double max_gouge = 0.0;                             // mm
-  Eigen::Vector3d gouge_at = Eigen::Vector3d::Zero(); // where the deepest gouge is
-  double path_length = 0.0, cutting_length = 0.0;     // mm
+  long gouges = 0;                                                 // of the cutting (feed) moves
+  double max_gouge = 0.0;                                          // mm
+  Eigen::Vector3d gouge_at = Eigen::Vector3d::Zero();              // where the deepest gouge is
+  MoveTouches links;                              // plunges and retracts below the surface
+  MoveTouches rapids;                             // rapids touching the part at all
+  double path_length = 0.0, cutting_length = 0.0; // mm
   long passes = 0, points = 0;
   double area = 0.0;         // mm^2 of the surface measured
   double ideal_length = 0.0; // L*, mm

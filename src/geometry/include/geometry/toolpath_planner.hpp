@@ -21,6 +21,9 @@
 //     boundary of the surface, which the slicing planes meet at an angle.
 // With PassPattern::concentric, steps 4 and 5 are rings about the highest point instead
 // (concentric_field.hpp), their inserted pieces cut after them nearest first.
+// Every pose passes the motion gate (motion_gate.hpp) before it reaches the sink: a move
+// that would cut deeper than `gate_tolerance` or a rapid that touches the part ends the
+// run with an error, and rejected() holds the pose.
 // With `baseline` the planes are spaced evenly at the smallest interval instead (plain
 // iso-planar passes with the same worst-case scallop), for comparison.
 
@@ -30,6 +33,7 @@
 #include "geometry/feed_direction.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_slicer.hpp"
+#include "geometry/motion_gate.hpp"
 #include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
 #include "geometry/point_grid.hpp"
@@ -77,6 +81,10 @@ struct PlanOptions {
   // (pass_insertion.hpp); the scallop there may exceed the target by about twice as much.
   double spacing_allowance = 0.01;
   int max_rate = 96; // tessellation segments per cage face edge
+  // mm a move may cut below the surface (motion_gate.hpp); default 1 um, or 2.5 times the
+  // tolerance where that is coarser (the mesh chord, the reduction and the lifts together
+  // were measured to cut up to that deep).
+  std::optional<double> gate_tolerance;
 };
 
 struct PlanSummary {
@@ -105,6 +113,7 @@ struct PlanSummary {
   double link_length = 0.0;      // mm of retracts, rapids and plunges
   long stay_down_links = 0;      // links made by feed along the surface
   double stay_down_length = 0.0; // mm of them (counted in cut_length)
+  GateReport gate;               // what the motion gate checked
 
   [[nodiscard]] bool rings() const { return !ring_centres.empty(); } // concentric passes cut
 };
@@ -125,12 +134,14 @@ public:
   [[nodiscard]] const PlanSummary& summary() const { return summary_; }
   [[nodiscard]] const SurfaceMesh& mesh() const { return mesh_; }
   [[nodiscard]] Eigen::Vector3d slicing_normal() const { return s_; }
+  // The pose the motion gate refused, when run() failed there.
+  [[nodiscard]] const std::optional<cl::ClPose>& rejected() const { return rejected_; }
 
 private:
   struct PassPoint {
     Eigen::Vector3d centre, contact, normal, axis;
   };
-  ToolpathPlanner(PlanOptions options, SurfaceMesh mesh);
+  ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate);
   void index_triangles();
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>> cut_level(MeshSlicer& slicer, double level,
@@ -168,6 +179,8 @@ private:
   double link_distance_ = 0.0;
   double stay_down_ = 0.0; // mm
   std::optional<cl::ClPose> last_;
+  MotionGate gate_;
+  std::optional<cl::ClPose> rejected_;
   PlanSummary summary_;
 };
 

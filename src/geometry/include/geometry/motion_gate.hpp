@@ -1,0 +1,77 @@
+#pragma once
+// The last check between a tool path and a machine: every move, not only every pose, is
+// measured against the part before it may go on. `plan` and `run` pass every pose the
+// planner makes through it, `post --cage` and `run PART.cl --cage` every pose they read.
+//
+// What it measures: the ball (radius r, centre tip + r axis) swept from one pose to the
+// next, the tip moving straight and the axis turning evenly, against its own triangle mesh
+// of the limit surface (vertices on the exact surface, chords within `chord` of it).
+//  - feed, plunge and retract moves may touch the part, not cut deeper than `tolerance`;
+//  - rapids may not touch it at all: the ball keeps more than `chord` from the mesh.
+// The first pose is checked where it stands.
+//
+// Sampling bound: each move is split into pieces along which the axis turns at most 0.5
+// degrees and the tip moves at most r; each piece's ball sweep is the capsule round the
+// straight line between its centres, measured exactly against every triangle. The true
+// sweep lies within r (1 - cos 0.25 deg) = 1e-5 r of that capsule, and the mesh within
+// `chord` of the surface, so a reported depth is within chord + 1e-5 r of the true one:
+// a cut deeper than tolerance + chord + 1e-5 r is always refused, one shallower than
+// tolerance - chord - 1e-5 r never is. `chord` is tolerance / 4 unless a face needs more
+// than 256 segments an edge (then it is what 256 give; GateReport says it).
+
+#include "base/error.hpp"
+#include "cl/cl_pose.hpp"
+#include "geometry/cage.hpp"
+#include "geometry/limit_surface.hpp"
+#include "geometry/surface_mesh.hpp"
+#include "geometry/triangle_tree.hpp"
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+
+namespace subfeed::geometry {
+
+struct GateOptions {
+  double ball_radius = 3.0; // mm
+  double tolerance = 1e-3;  // mm a feed, plunge or retract may cut below the surface
+};
+
+struct GateReport {
+  long moves = 0;         // poses accepted, each with the move that reaches it
+  long rapids = 0;        // of them rapids
+  double chord = 0.0;     // mm between the gate's mesh and the surface, at most
+  double tolerance = 0.0; // mm: GateOptions::tolerance
+};
+
+class MotionGate {
+public:
+  [[nodiscard]] static Expected<MotionGate> build(const Cage& cage, const LimitSurface& surface,
+                                                  const GateOptions& options);
+
+  // The move from the last pose accepted to `pose`: accepted, or an error (bad_input) that
+  // names the pose's CL line (when it has one), the move, where it reaches into the part and
+  // how deep. A refused pose is not remembered: the gate stays at the last accepted one.
+  [[nodiscard]] Expected<void> check(const cl::ClPose& pose);
+
+  [[nodiscard]] const GateReport& report() const { return report_; }
+  [[nodiscard]] const GateOptions& options() const { return options_; }
+
+private:
+  MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord);
+  // The least distance from the mesh to the ball centre's sweep over the move, if under
+  // `limit`; with where it is.
+  [[nodiscard]] std::optional<MeshNearest> nearest(const cl::ClPose& from, const cl::ClPose& to,
+                                                   double limit) const;
+  // The error for the move from the last pose to `pose`, which reaches `found`.
+  [[nodiscard]] std::unexpected<Error> refusal(const cl::ClPose& pose,
+                                               const MeshNearest& found) const;
+
+  GateOptions options_;
+  std::unique_ptr<SurfaceMesh> mesh_; // held by pointer: the tree points into it
+  std::unique_ptr<TriangleTree> tree_;
+  std::optional<cl::ClPose> last_;
+  GateReport report_;
+};
+
+} // namespace subfeed::geometry

@@ -1,0 +1,139 @@
+#include "geometry/motion_gate.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+namespace subfeed::geometry {
+
+namespace {
+
+constexpr double piece_turn_rad = 0.5 * std::numbers::pi / 180.0;
+constexpr int most_segments = 256; // Bfr's largest tessellation rate
+
+Eigen::Vector3d tip_of(const cl::ClPose& p) {
+  return {p.tip[0], p.tip[1], p.tip[2]};
+}
+
+Eigen::Vector3d axis_of(const cl::ClPose& p) {
+  const Eigen::Vector3d a{p.axis[0], p.axis[1], p.axis[2]};
+  return a.norm() > 0.0 ? a.normalized() : Eigen::Vector3d::UnitZ();
+}
+
+const char* move_name(cl::MoveKind kind) {
+  switch (kind) {
+  case cl::MoveKind::rapid:
+    return "rapid";
+  case cl::MoveKind::feed:
+    return "cutting move";
+  case cl::MoveKind::plunge:
+    return "plunge";
+  case cl::MoveKind::retract:
+    return "retract";
+  }
+  return "move";
+}
+
+std::string point_text(const Eigen::Vector3d& p) {
+  return fmt::format("({:.4f}, {:.4f}, {:.4f})", p.x(), p.y(), p.z());
+}
+
+// The largest chord error the rates leave, mm, by the same second-derivative estimate the
+// rates were chosen with.
+double achieved_chord(const LimitSurface& surface, const std::vector<int>& rates, double wanted) {
+  double chord = wanted;
+  if (std::ranges::max(rates) < most_segments) {
+    return chord;
+  }
+  // The rate a 64 times finer chord would take, up to 8 times the cap: chord ~ 1 / rate^2.
+  const auto finer = rates_for_tolerance(surface, wanted / 64.0, 8 * most_segments);
+  for (std::size_t f = 0; f < rates.size(); ++f) {
+    if (rates[f] >= most_segments) {
+      const double ratio = static_cast<double>(finer[f]) / most_segments;
+      chord = std::max(chord, wanted / 64.0 * ratio * ratio);
+    }
+  }
+  return chord;
+}
+
+} // namespace
+
+MotionGate::MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord)
+    : options_(options), mesh_(std::move(mesh)),
+      tree_(std::make_unique<TriangleTree>(mesh_->points, mesh_->triangles)) {
+  report_.chord = chord;
+  report_.tolerance = options_.tolerance;
+}
+
+Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& surface,
+                                       const GateOptions& options) {
+  if (!(options.ball_radius > 0.0) || !(options.tolerance > 0.0)) {
+    return fail(ErrorCode::bad_input, "the gate needs a ball radius and tolerance above 0");
+  }
+  const double wanted = options.tolerance / 4.0;
+  const auto rates = rates_for_tolerance(surface, wanted, most_segments);
+  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
+  return MotionGate(options, std::make_unique<SurfaceMesh>(std::move(mesh)),
+                    achieved_chord(surface, rates, wanted));
+}
+
+std::optional<MeshNearest> MotionGate::nearest(const cl::ClPose& from, const cl::ClPose& to,
+                                               double limit) const {
+  const double r = options_.ball_radius;
+  const Eigen::Vector3d t0 = tip_of(from), t1 = tip_of(to);
+  const Eigen::Vector3d a0 = axis_of(from), a1 = axis_of(to);
+  const double turn = std::acos(std::clamp(a0.dot(a1), -1.0, 1.0));
+  const int pieces = std::max(
+      1, static_cast<int>(std::ceil(std::max(turn / piece_turn_rad, (t1 - t0).norm() / r))));
+  const auto centre = [&](double t) {
+    const Eigen::Vector3d axis = (1.0 - t) * a0 + t * a1;
+    return Eigen::Vector3d((1.0 - t) * t0 + t * t1 +
+                           r * (axis.norm() > 0.0 ? axis.normalized() : a1));
+  };
+  std::optional<MeshNearest> best;
+  Eigen::Vector3d previous = centre(0.0);
+  for (int i = 1; i <= pieces; ++i) {
+    const Eigen::Vector3d next = centre(static_cast<double>(i) / pieces);
+    if (auto found = tree_->nearest(previous, next, best ? best->distance : limit)) {
+      best = found;
+    }
+    previous = next;
+  }
+  return best;
+}
+
+Expected<void> MotionGate::check(const cl::ClPose& pose) {
+  const double r = options_.ball_radius;
+  const bool rapid = pose.kind == cl::MoveKind::rapid;
+  // Only what reaches past the limit is searched for (the nearest point under it, if any):
+  // a move that touches the part where it should costs no more than the box tests round it.
+  const double limit = rapid ? r + report_.chord : r - options_.tolerance;
+  if (const auto found = nearest(last_ ? *last_ : pose, pose, limit)) {
+    return refusal(pose, *found);
+  }
+  ++report_.moves;
+  report_.rapids += rapid ? 1 : 0;
+  last_ = pose;
+  return {};
+}
+
+std::unexpected<Error> MotionGate::refusal(const cl::ClPose& pose, const MeshNearest& found) const {
+  const double depth = options_.ball_radius - found.distance; // < 0: clear of the mesh by that
+  const std::string what =
+      pose.kind == cl::MoveKind::rapid
+          ? fmt::format("touches the part (the ball {:.4f} mm {})", std::abs(depth),
+                        depth >= 0.0 ? "deep" : "from it, within the gate's mesh error")
+          : fmt::format("cuts {:.4f} mm into the part (tolerance {:g} mm)", depth,
+                        options_.tolerance);
+  const std::string move = last_ ? fmt::format("the {} from {} to {}", move_name(pose.kind),
+                                               point_text(tip_of(*last_)), point_text(tip_of(pose)))
+                                 : fmt::format("the first pose, a {} at {},", move_name(pose.kind),
+                                               point_text(tip_of(pose)));
+  return fail(ErrorCode::bad_input,
+              fmt::format("tool path refused: {} {} at {}", move, what, point_text(found.on_mesh)),
+              {{}, static_cast<int>(pose.line), {}});
+}
+
+} // namespace subfeed::geometry
