@@ -337,6 +337,15 @@ private:
     return {};
   }
 
+  // The program could not give its next line (a live job's planner or motion gate refused
+  // the path): what was sent is all that may run; the machine is held and reset.
+  Expected<void> source_failed(const Error& error) {
+    if (!fault_) {
+      fault_ = Error{error.code, error.message + acked_note(), error.where};
+    }
+    return check_fault();
+  }
+
   // Turns a recorded fault into the stream's result, after stopping the machine.
   Expected<void> check_fault() {
     if (!fault_) {
@@ -567,7 +576,11 @@ private:
       SUBFEED_TRY(turn_and_clear_latch());
       while (!end_of_file) {
         if (!next) {
-          SUBFEED_TRY_ASSIGN(next, source_.next());
+          auto read = source_.next();
+          if (!read) {
+            return source_failed(read.error());
+          }
+          next = std::move(*read);
           end_of_file = !next;
           if (end_of_file) {
             break;

@@ -72,6 +72,9 @@ Expected<PostFileSummary> post_file(const std::filesystem::path& cl_path,
       if (!pose) {
         break;
       }
+      if (options.check) {
+        SUBFEED_TRY(options.check(*pose));
+      }
       SUBFEED_TRY(post.add(*pose));
     }
     SUBFEED_TRY(post.finish());

@@ -57,6 +57,14 @@ long ClWriter::write(const ClPose& pose) {
   return line_;
 }
 
+long ClWriter::line_of(const ClPose& pose) const {
+  if (pose.kind == MoveKind::rapid) {
+    return line_ + 2;
+  }
+  const bool kind_line = pose.kind == MoveKind::plunge || pose.kind == MoveKind::retract;
+  return line_ + 1 + (pose.feed != feed_ ? 1 : 0) + (kind_line ? 1 : 0);
+}
+
 Expected<void> ClWriter::finish() {
   out_.write("FINI\n");
   return out_.commit();

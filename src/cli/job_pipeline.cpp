@@ -4,6 +4,7 @@
 #include "cl/cl_reader.hpp"
 #include "cl/cl_writer.hpp"
 #include "motion_time.hpp"
+#include "plan_report.hpp"
 #include "post/post_processor.hpp"
 #include "post/program_writer.hpp"
 #include "restart_point.hpp"
@@ -107,13 +108,16 @@ Expected<void> JobPipeline::plan_all() {
     plane_ = plane;
     planes_ = planes;
   };
-  SUBFEED_TRY(planner.run(
-      [&](const cl::ClPose& pose) -> Expected<void> {
-        cl::ClPose numbered = pose;
-        numbered.line = writer.write(pose);
-        return hand_over(numbered, last, cut_mm);
-      },
-      on_plane));
+  if (auto ran = planner.run(
+          [&](const cl::ClPose& pose) -> Expected<void> {
+            cl::ClPose numbered = pose;
+            numbered.line = writer.write(pose);
+            return hand_over(numbered, last, cut_mm);
+          },
+          on_plane);
+      !ran) {
+    return std::unexpected(at_refused_pose(ran.error(), planner, writer, spec_.files.cl));
+  }
   SUBFEED_TRY(writer.finish());
   totals_.plan = planner.summary();
   return {};
@@ -131,6 +135,11 @@ Expected<void> JobPipeline::read_all() {
     SUBFEED_TRY_ASSIGN(const auto pose, reader.next());
     if (!pose) {
       break;
+    }
+    if (spec_.gate) {
+      if (auto checked = spec_.gate->check(*pose); !checked) {
+        return std::unexpected(in_file(std::move(checked).error(), spec_.files.cl));
+      }
     }
     SUBFEED_TRY(hand_over(*pose, last, cut_mm));
     if (++poses % 1024 == 0) {

@@ -44,6 +44,8 @@ struct JobSpec {
   cl::ClHeader header;
   JobFiles files;
   std::size_t queue_lines = 256; // program lines between the post and the stream
+  // Existing CL data passes this pose by pose before the post sees it (the planner has its own).
+  std::optional<geometry::MotionGate> gate;
 };
 
 struct JobTotals {

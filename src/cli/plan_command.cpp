@@ -41,13 +41,16 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   cl::ClHeader header{
       std::filesystem::path(o.cage).stem().string(), {2 * radius, radius}, !options.fixed_axis};
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
-  SUBFEED_TRY(planner.run(
+  const auto ran = planner.run(
       [&writer](const cl::ClPose& pose) -> Expected<void> {
         writer.write(pose);
         return {};
       },
-      [&](long plane, long planes) { progress.plane(plane, planes); }));
+      [&](long plane, long planes) { progress.plane(plane, planes); });
   progress.finish();
+  if (!ran) {
+    return std::unexpected(at_refused_pose(ran.error(), planner, writer, output));
+  }
   SUBFEED_TRY(writer.finish());
   const auto& s = planner.summary();
   log.info(fmt::format("{}: {} passes, {} points, cutting {:.1f} mm, links {:.1f} mm ({})", output,
@@ -96,6 +99,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          s.rings() ? "concentric rings cut" : "parallel passes kept", s.ring_price,
                          s.parallel_price));
   }
+  log.info(gate_summary(s.gate));
   report_unreachable(s, log);
   return {};
 }

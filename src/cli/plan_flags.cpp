@@ -58,6 +58,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
     options.stay_down = o.stay_down;
   }
   options.refine_iterations = o.refine;
+  if (o.gate_tolerance > 0.0) {
+    options.gate_tolerance = o.gate_tolerance;
+  }
   if (o.tolerance > 0.0) {
     options.tolerance = o.tolerance;
   }
@@ -91,11 +94,21 @@ void add_plan_flags(CLI::App& cmd, PlanFlags& o, bool required) {
   cmd.add_option("--tolerance", o.tolerance,
                  "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
       ->check(CLI::Range(1e-6, 1.0));
+  add_gate_tolerance_flag(cmd, o.gate_tolerance);
   cmd.add_option("--level", o.level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
   cmd.add_option("--refine", o.refine,
                  "Most deformation solves while measured spacing exceeds the need")
       ->check(CLI::Range(1, 100));
+}
+
+void add_gate_tolerance_flag(CLI::App& cmd, double& tolerance_mm) {
+  cmd.add_option("--gate-tolerance", tolerance_mm,
+                 "Deepest cut below the surface the motion gate lets through, mm (default "
+                 "0.001; when planning, 2.5 times --tolerance where that is more); rapids may "
+                 "not touch the part at all")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-5, 1.0));
 }
 
 } // namespace subfeed::cli

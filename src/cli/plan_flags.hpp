@@ -26,12 +26,16 @@ struct PlanFlags {
   double clearance = 2.0;
   double stay_down = -1.0; // mm; 0: every link retracts; < 0: the ball's diameter
   double tolerance = 0.0;
+  double gate_tolerance =
+      0.0; // mm: the motion gate's deepest allowed cut; 0: the planner's default
   int level = geometry::min_approx_level;
   int refine = 60;
 };
 
 // `required`: --tool and --scallop must be given (run checks them itself: CL input has none).
 void add_plan_flags(CLI::App& cmd, PlanFlags& flags, bool required = true);
+// --gate-tolerance, which `post --cage` takes too.
+void add_gate_tolerance_flag(CLI::App& cmd, double& tolerance_mm);
 // Checks what CLI11 cannot (the scallop against the tool) and fills the planner's options.
 [[nodiscard]] Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& flags);
 

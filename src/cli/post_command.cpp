@@ -1,8 +1,13 @@
 // `subfeed post PART.cl --machine M.toml [--dialect grbl|fanuc|linuxcnc] -o PART.nc`: CL
 // data to G-code for one machine (postprocessors/post_file.hpp).
 
+#include "cl_gate.hpp"
 #include "command.hpp"
+#include "plan_flags.hpp"
+#include "plan_report.hpp"
 
+#include "cl/cl_reader.hpp"
+#include "geometry/limit_surface.hpp"
 #include "post/machine_config.hpp"
 #include "post/post_file.hpp"
 
@@ -27,6 +32,9 @@ struct PostCommandOptions {
   bool line_numbers = false;
   bool no_look_ahead = false;
   double spindle = 0.0;
+  std::string cage;            // check every move against its part first
+  double gate_tolerance = 0.0; // mm; 0: 1 um
+  int level = geometry::min_approx_level;
 };
 
 Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
@@ -54,6 +62,14 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
                 {{}, 0, "--tcp"});
   }
   options.look_ahead = !o.no_look_ahead;
+  std::optional<geometry::MotionGate> gate;
+  if (!o.cage.empty()) {
+    SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
+    SUBFEED_TRY_ASSIGN(auto built, gate_for_cl(o.cage, reader.header(), o.level,
+                                               o.gate_tolerance > 0.0 ? o.gate_tolerance : 1e-3));
+    gate.emplace(std::move(built));
+    options.check = [&gate](const cl::ClPose& pose) { return gate->check(pose); };
+  }
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cl).replace_extension(".nc").string() : o.output;
   SUBFEED_TRY_ASSIGN(const auto summary, post::post_file(o.cl, machine, options, output));
@@ -64,6 +80,9 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
                        output, s.poses, summary.lines, s.blocks, s.splits, o.tolerance,
                        o.axis_tolerance, s.repositions, s.cone_poses, s.max_axis_hold,
                        post::map_path_for(output).string()));
+  if (gate) {
+    log.info(gate_summary(gate->report()));
+  }
   return {};
 }
 
@@ -89,6 +108,14 @@ void add_post_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--spindle", o->spindle,
                   "Spindle speed, rpm: S and M3 at the start, M5 at the end")
       ->check(CLI::Range(1.0, 200000.0));
+  cmd->add_option("--cage", o->cage,
+                  "Check every move against the part of this cage first: a cut deeper than "
+                  "--gate-tolerance or a rapid touching it is refused and nothing is written")
+      ->type_name("CAGE.obj");
+  add_gate_tolerance_flag(*cmd, o->gate_tolerance);
+  cmd->add_option("--level", o->level,
+                  "With --cage: Bfr approximation level near irregular features")
+      ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
   cmd->add_flag("--no-look-ahead", o->no_look_ahead,
                 "Choose the starting solution from the first pose alone (one pass over the CL)");
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_post(*o, log); }; });

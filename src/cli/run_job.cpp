@@ -1,5 +1,7 @@
 #include "run_job.hpp"
 
+#include "cl_gate.hpp"
+
 #include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
@@ -59,6 +61,10 @@ void add_run_flags(CLI::App& cmd, RunOptions& o) {
                  "(default: the cage's path without .obj)");
   cmd.add_option("--journal", o.journal, "Append the job's journal to FILE (default BASE.journal)")
       ->type_name("FILE");
+  cmd.add_option("--cage", o.check_cage,
+                 "With CL data: the cage it was made for; every move is checked against it "
+                 "before it is streamed (required)")
+      ->type_name("CAGE.obj");
   cmd.add_option("--spindle", o.spindle_rpm, "Spindle speed, rpm (S and M3 at the start)")
       ->check(CLI::Range(0.0, 200000.0));
 }
@@ -106,10 +112,25 @@ Expected<JobSpec> cl_job_spec(const RunOptions& o, post::MachineConfig machine) 
     return fail(ErrorCode::usage, "plans come from a cage: CL data already has its path and cutter",
                 {{}, 0, o.plan.tool.empty() ? "--scallop" : "--tool"});
   }
+  if (o.check_cage.empty()) {
+    return fail(ErrorCode::usage,
+                "CL data reaches the machine only checked against the part: give the cage it "
+                "was made for",
+                {{}, 0, "--cage"});
+  }
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(o.cage)); // the header, checked now
+  SUBFEED_TRY_ASSIGN(auto gate,
+                     gate_for_cl(o.check_cage, reader.header(), o.plan.level,
+                                 o.plan.gate_tolerance > 0.0 ? o.plan.gate_tolerance : 1e-3));
   auto post = post_options_for(machine, o);
   post.look_ahead = true; // the whole path exists: choose the start as `post` does
-  return JobSpec{std::nullopt, std::move(machine), post, reader.header(), job_files(o)};
+  JobSpec spec{.plan = std::nullopt,
+               .machine = std::move(machine),
+               .post = post,
+               .header = reader.header(),
+               .files = job_files(o),
+               .gate = std::move(gate)};
+  return spec;
 }
 
 } // namespace
@@ -135,21 +156,26 @@ Expected<JobSpec> job_spec(const RunOptions& o, Logger& log) {
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * plan.ball_radius, plan.ball_radius},
                       !plan.fixed_axis};
-  return JobSpec{PlanInput{std::move(cage), std::move(surface), plan}, std::move(machine), post,
-                 header, job_files(o)};
+  return JobSpec{.plan = PlanInput{std::move(cage), std::move(surface), plan},
+                 .machine = std::move(machine),
+                 .post = post,
+                 .header = header,
+                 .files = job_files(o),
+                 .gate = std::nullopt};
 }
 
 std::string encode_job(const RunOptions& o) {
   const auto& p = o.plan;
-  return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
-                     "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
-                     "tolerance={} level={} refine={} spindle={} stay_down={}",
-                     escape(o.cage), escape(o.machine),
-                     escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
-                     number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
-                     number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
-                     number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
-                     p.refine, number(o.spindle_rpm), number(p.stay_down));
+  return fmt::format(
+      "cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
+      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
+      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
+      "gate_tolerance={}",
+      escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
+      escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
+      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level, p.refine,
+      number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance));
 }
 
 Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
@@ -205,6 +231,12 @@ Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
     o.spindle_rpm = real("spindle");
     // Journals from before stay-down links were planned with every link retracting.
     o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
+    if (fields.contains("gate_tolerance")) {
+      o.plan.gate_tolerance = real("gate_tolerance");
+    }
+    if (const auto it = fields.find("check_cage"); it != fields.end()) {
+      o.check_cage = it->second;
+    }
   } catch (const std::exception& e) {
     return fail(ErrorCode::bad_input, std::string("job record without a valid '") + e.what() + "'",
                 where);

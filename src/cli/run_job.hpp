@@ -19,7 +19,8 @@ class App;
 namespace subfeed::cli {
 
 struct RunOptions {
-  std::string cage; // or CL data (.cl): then nothing is planned
+  std::string cage;       // or CL data (.cl): then nothing is planned
+  std::string check_cage; // with CL data: the cage its every move is checked against
   PlanFlags plan;
   std::string machine;
   std::string output;  // BASE: BASE.cl, BASE.nc, BASE.journal; default the cage without .obj

@@ -54,6 +54,15 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        r.gouges > 0 ? fmt::format(" (near {:.3f}, {:.3f}, {:.3f})", r.gouge_at.x(),
                                                   r.gouge_at.y(), r.gouge_at.z())
                                     : std::string()));
+  const auto touches = [](const char* what, const geometry::MoveTouches& t) {
+    return t.samples == 0
+               ? fmt::format("  {}: none reach into the part", what)
+               : fmt::format("  {}: {} samples inside their sweep, deepest {:.6f} mm (near {:.3f}, "
+                             "{:.3f}, {:.3f})",
+                             what, t.samples, t.deepest, t.at.x(), t.at.y(), t.at.z());
+  };
+  log.info(touches("links (plunges and retracts)", r.links));
+  log.info(touches("rapids", r.rapids));
   log.info(fmt::format("  path {:.1f} mm, cutting {:.1f} mm, {} passes, {} points; L* {:.1f} mm, "
                        "L/L* {:.3f}",
                        r.path_length, r.cutting_length, r.passes, r.points, r.ideal_length,

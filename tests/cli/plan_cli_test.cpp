@@ -1,6 +1,7 @@
 // `subfeed plan` and `subfeed verify` as a user runs them.
 
 #include "sim/pty.hpp"
+#include "support/hand_made_cl.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -168,4 +169,42 @@ TEST_CASE("verify writes a PNG, and refuses an unwritable one in one line withou
   CHECK(bad.err.find(missing.string()) != std::string::npos);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_FALSE(std::filesystem::exists(missing));
+}
+
+TEST_CASE("plan refused by the motion gate writes no CL file, names the line and exits 2",
+          "[slow]") {
+  // A gate tolerance of 0.01 um is finer than the plan's own rounding: its first cut that
+  // reaches deeper is refused where it stands.
+  TempDir dir;
+  const auto cl = (dir.path() / "plane.cl").string();
+  const auto plan = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6",
+                                 "--scallop", "0.05", "--gate-tolerance", "0.00001", "-o", cl});
+  CHECK(plan.exit_code == 2);
+  INFO(plan.err);
+  CHECK(plan.err.rfind("subfeed: error: " + cl + ":", 0) == 0);
+  CHECK(plan.err.find(": tool path refused: the ") != std::string::npos);
+  CHECK(plan.err.find("mm into the part (tolerance 1e-05 mm) at (") != std::string::npos);
+  CHECK(plan.err.find("; nothing written\n") != std::string::npos);
+  CHECK(std::count(plan.err.begin(), plan.err.end(), '\n') == 1);
+  CHECK_FALSE(std::filesystem::exists(cl));
+  // At the default 1 um the same plan passes and says what was checked.
+  const auto passed = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
+                                   "ball:6", "--scallop", "0.05", "-o", cl});
+  REQUIRE(passed.exit_code == 0);
+  CHECK(passed.out.find("checked against the part (its mesh within 0.25 um): no cut deeper than "
+                        "1 um, no rapid touching it") != std::string::npos);
+  CHECK(std::filesystem::exists(cl));
+}
+
+TEST_CASE("verify tells a rapid through the part from cutting gouges", "[unit]") {
+  // Over the plane z = 0: one pass on it, then a rapid whose ball ends 1 mm below it.
+  TempDir dir;
+  const auto cl = dir.write("through.cl", subfeed::testing::rapid_through_plane_cl);
+  const auto verify = run_process(
+      {bin, "verify", source_dir + "/examples/plane.obj", cl.string(), "--tool", "ball:6"});
+  CHECK(verify.exit_code == 0);
+  CHECK(verify.out.find("\n  gouges 0 samples deeper than 0.1 um, deepest 0.000000 mm\n"
+                        "  links (plunges and retracts): none reach into the part\n"
+                        "  rapids: 3135 samples inside their sweep, deepest 1.000000 mm (near "
+                        "-10.000, 5.000, 0.000)\n") != std::string::npos);
 }

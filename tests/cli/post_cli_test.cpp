@@ -1,5 +1,6 @@
 // `subfeed post` and `subfeed check` as a user runs them on the shipped examples.
 
+#include "support/hand_made_cl.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 #include "support/text_file.hpp"
@@ -70,6 +71,33 @@ TEST_CASE("post refuses bad input in one line, exit 2, and writes nothing") {
                                 "-o", nc.string()});
   CHECK(tcp.exit_code != 0);
   CHECK_FALSE(std::filesystem::exists(nc));
+}
+
+TEST_CASE("post --cage refuses a rapid through the part, naming its line, and writes nothing") {
+  TempDir dir;
+  const auto cl = dir.write("through.cl", subfeed::testing::rapid_through_plane_cl);
+  const auto nc = dir.path() / "through.nc";
+  const std::string router = source_dir + "/configs/grbl-router-3axis.toml";
+  const auto post = run_process({bin, "post", cl.string(), "--machine", router, "--cage",
+                                 source_dir + "/examples/plane.obj", "-o", nc.string()});
+  CHECK(post.exit_code == 2);
+  CHECK(post.err == "subfeed: error: " + cl.string() +
+                        ":16: tool path refused: the rapid from (10.0000, 0.0000, 2.0000) to "
+                        "(-10.0000, 5.0000, -1.0000) touches the part (the ball 1.0000 mm deep) "
+                        "at (-10.0000, 5.0000, 0.0000)\n");
+  CHECK_FALSE(std::filesystem::exists(nc));
+  CHECK_FALSE(std::filesystem::exists(nc.string() + ".map"));
+  // Without the rapid the same path passes, and the summary says what was checked.
+  const auto good = dir.write("good.cl", subfeed::testing::rapid_through_plane_sound_part_cl);
+  const auto ok = run_process({bin, "post", good.string(), "--machine", router, "--cage",
+                               source_dir + "/examples/plane.obj", "-o", nc.string()});
+  INFO(ok.err);
+  CHECK(ok.exit_code == 0);
+  CHECK((ok.out + ok.err)
+            .find("  motion gate: 5 moves (2 rapids) checked against the part (its mesh within "
+                  "0.25 um): no cut deeper than 1 um, no rapid touching it\n") !=
+        std::string::npos);
+  CHECK(std::filesystem::exists(nc));
 }
 
 TEST_CASE("check refuses what it cannot replay, naming the line, and needs the trace map") {

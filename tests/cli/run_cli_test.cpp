@@ -2,12 +2,14 @@
 // streamed over real ptys to the simulated controllers, interrupted, and resumed.
 
 #include "drivers/gcode_line.hpp"
+#include "support/hand_made_cl.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 #include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -301,12 +303,16 @@ TEST_CASE("resume refuses journals it cannot continue, in one line naming the jo
 
 TEST_CASE("run on existing CL data posts it as `post` does and streams it lazily", "[pty]") {
   subfeed::testing::TempDir dir;
-  const std::string cl = source_dir + "/examples/bowl-raster.cl";
+  const std::string plane = source_dir + "/examples/plane.obj";
+  const std::string cl = (dir.path() / "plane.cl").string();
+  const auto planned = run_process(
+      {bin, "plan", plane, "--tool", "ball:6", "--scallop", "0.05", "--axis", "fixed", "-o", cl});
+  REQUIRE(planned.exit_code == 0);
   const std::string router = source_dir + "/configs/grbl-router-3axis.toml";
-  const std::string base = (dir.path() / "bowl").string();
+  const std::string base = (dir.path() / "job").string();
   const std::string before = read_text(cl);
-  const auto r = run_process({bin, "run", cl, "--machine", router, "--sim", "--sim-speed", "1000",
-                              "--sim-baud", "0", "-o", base, "--json"});
+  const auto r = run_process({bin, "run", cl, "--cage", plane, "--machine", router, "--sim",
+                              "--sim-speed", "1000", "--sim-baud", "0", "-o", base, "--json"});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("\"event\":\"job\"") != std::string::npos);
@@ -320,12 +326,60 @@ TEST_CASE("run on existing CL data posts it as `post` does and streams it lazily
   CHECK(read_text(base + ".journal").find("event job cage=" + cl) != std::string::npos);
 }
 
+TEST_CASE("run refuses CL data without its cage, and a rapid through the part before it is "
+          "streamed",
+          "[pty]") {
+  subfeed::testing::TempDir dir;
+  const std::string plane = source_dir + "/examples/plane.obj";
+  const std::string router = source_dir + "/configs/grbl-router-3axis.toml";
+  // Line 16's rapid dives through the plane z = 0.
+  const auto cl = dir.write("through.cl", subfeed::testing::rapid_through_plane_cl);
+  const std::string base = (dir.path() / "job").string();
+  const auto unchecked =
+      run_process({bin, "run", cl.string(), "--machine", router, "--sim", "-o", base});
+  CHECK(unchecked.exit_code == 1);
+  CHECK(unchecked.err == "subfeed: error: --cage: CL data reaches the machine only checked "
+                         "against the part: give the cage it was made for\n");
+  CHECK_FALSE(std::filesystem::exists(base + ".journal"));
+  const auto r = run_process({bin, "run", cl.string(), "--cage", plane, "--machine", router,
+                              "--sim", "--sim-speed", "1000", "--sim-baud", "0", "-o", base});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find(cl.string() + ":16: tool path refused: the rapid from (10.0000, 0.0000, "
+                                 "2.0000) to (-10.0000, 5.0000, -1.0000) touches the part") !=
+        std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(base + ".nc"));
+  // Nothing of the refused rapid reached the controller: every block sent serves a CL line
+  // before it (by the trace map of the same path posted up to it).
+  const auto good = dir.write("good.cl", subfeed::testing::rapid_through_plane_sound_part_cl);
+  const std::string good_nc = (dir.path() / "good.nc").string();
+  REQUIRE(run_process({bin, "post", good.string(), "--machine", router, "-o", good_nc}).exit_code ==
+          0);
+  long last_before = 0;
+  std::istringstream map(read_text(good_nc + ".map"));
+  for (std::string row; std::getline(map, row);) {
+    long nc_line = 0, cl_line = 0;
+    if (std::sscanf(row.c_str(), "%ld %ld", &nc_line, &cl_line) == 2 && cl_line > 0) {
+      last_before = nc_line;
+    }
+  }
+  REQUIRE(last_before > 0);
+  std::istringstream journal(read_text(base + ".journal"));
+  for (std::string row; std::getline(journal, row);) {
+    long sent = 0;
+    if (std::sscanf(row.c_str(), "%*s sent line=%ld", &sent) == 1) {
+      INFO(row);
+      CHECK(sent <= last_before);
+    }
+  }
+}
+
 TEST_CASE("run refuses planning flags with CL data and needs them with a cage", "[unit]") {
   subfeed::testing::TempDir dir;
   const std::string base = (dir.path() / "job").string();
   SECTION("CL data with --tool") {
-    const auto r = run_process({bin, "run", source_dir + "/examples/bowl-raster.cl", "--machine",
-                                grblhal, "--tool", "ball:6", "--sim", "-o", base});
+    const auto r = run_process({bin, "run", source_dir + "/examples/bowl-raster.cl", "--cage",
+                                source_dir + "/examples/bowl.obj", "--machine", grblhal, "--tool",
+                                "ball:6", "--sim", "-o", base});
     CHECK(r.exit_code == 1);
     CHECK(r.err == "subfeed: error: --tool: plans come from a cage: CL data already has its path "
                    "and cutter\n");

@@ -10,6 +10,7 @@
 #include "post/program_writer.hpp"
 
 #include <filesystem>
+#include <functional>
 
 namespace subfeed::post {
 
@@ -17,6 +18,9 @@ struct PostFileOptions {
   PostOptions post;
   ProgramOptions program; // dialect, decimals, line length taken from here, not the machine
   bool look_ahead = true; // read the CL data twice to choose the starting solution
+  // Called with every pose before it is posted; an error ends the post and nothing is
+  // written (the motion gate, when the caller has the part).
+  std::function<Expected<void>(const cl::ClPose&)> check;
 };
 
 struct PostFileSummary {

@@ -17,6 +17,9 @@ public:
                                                  const ClHeader& header);
   // Returns the line of the file the pose's GOTO is on (for trace maps).
   long write(const ClPose& pose);
+  // The line write(pose) would put the pose's GOTO on, writing nothing (to name a pose
+  // that was refused before it was written).
+  [[nodiscard]] long line_of(const ClPose& pose) const;
   // Writes FINI and moves the file into place.
   [[nodiscard]] Expected<void> finish();
 
