@@ -1,13 +1,16 @@
 // Planning: time and CL points per second against cage size and scallop target, peak memory,
 // and the path length of every sample part against the ideal bound L* and the iso-planar
 // baseline. Baselines: meshing the limit surface alone (the floor any planner pays), the
-// baseline planner's point rate, the memory of the mesh alone, and `--baseline` paths.
+// baseline planner's point rate, the memory of the mesh alone, and `--baseline` paths; the
+// motion gate against the rest of the plan.
 
 #include "bench_harness.hpp"
 #include "wavy_cage.hpp"
 
+#include "cl/cl_reader.hpp"
 #include "cl/cl_writer.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/motion_gate.hpp"
 #include "geometry/obj_reader.hpp"
 #include "geometry/path_verifier.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -133,6 +136,38 @@ void bench_path_lengths(const std::filesystem::path& dir) {
   }
 }
 
+// The motion gate's share of a plan: every plan runs it, so its cost is timed on its own by
+// building it and replaying the plan's poses through it, and set against the rest of the
+// plan (plan time less that).
+void bench_gate(const std::filesystem::path& dir) {
+  struct Part {
+    std::string name;
+    geometry::Cage cage;
+    double scallop;
+  };
+  std::vector<Part> parts;
+  parts.push_back({"wavy 256 faces", wavy_cage(17), 0.01});
+  parts.push_back({"wavy 1,024 faces", wavy_cage(33), 0.005});
+  parts.push_back(
+      {"dome", geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/dome.obj").value(),
+       0.01});
+  for (const auto& part : parts) {
+    const auto surface = geometry::LimitSurface::build(part.cage).value();
+    const auto file = dir / "gate.cl";
+    const auto run = plan(part.cage, surface, 3.0, part.scallop, false, file);
+    const double gate = bench::best_seconds(3, [&] {
+      auto g = geometry::MotionGate::build(part.cage, surface, {3.0, 1e-3}).value();
+      auto reader = cl::ClReader::open(file).value();
+      while (auto pose = reader.next().value()) {
+        (void)g.check(*pose);
+      }
+      bench::keep(g.report());
+    });
+    bench::report({fmt::format("motion gate, {} H {}", part.name, part.scallop), gate, "s",
+                   "the rest of the plan", run.seconds - gate, false});
+  }
+}
+
 } // namespace
 
 int main() {
@@ -140,6 +175,7 @@ int main() {
       std::filesystem::temp_directory_path() / ("subfeed-plan-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   bench_memory(dir); // first, so the peak it reads is its own
+  bench_gate(dir);
   bench_plan_scaling(dir);
   bench_path_lengths(dir);
   std::filesystem::remove_all(dir);

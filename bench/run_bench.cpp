@@ -176,16 +176,32 @@ void write_raster(const fs::path& file, long points) {
   (void)writer.finish().value();
 }
 
+// A flat floor 10 mm below the raster's waves (the ball stays 2 mm above it): the cage the
+// motion gate checks the raster against.
+void write_floor(const fs::path& file) {
+  std::ofstream out(file);
+  for (int j = 0; j <= 6; ++j) {
+    for (int i = 0; i <= 7; ++i) {
+      out << "v " << -350 + 100 * i << ' ' << -300 + 100 * j << " -10\n";
+    }
+  }
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 7; ++i) {
+      const int v = j * 8 + i + 1;
+      out << "f " << v << ' ' << v + 1 << ' ' << v + 9 << ' ' << v + 8 << '\n';
+    }
+  }
+}
+
 double run_raster_mib(const fs::path& dir, long points) {
   const auto cl = dir / "raster.cl";
   write_raster(cl, points);
-  std::vector<std::string> args{"run",
-                                cl.string(),
-                                "--machine",
-                                source + "/configs/grbl-router-3axis.toml",
-                                "--sim",
-                                "-o",
-                                (dir / "raster").string()};
+  const auto floor = dir / "floor.obj";
+  write_floor(floor);
+  std::vector<std::string> args{
+      "run",          cl.string(), "--cage",
+      floor.string(), "--machine", source + "/configs/grbl-router-3axis.toml",
+      "--sim",        "-o",        (dir / "raster").string()};
   for (const auto& f : sim_flags()) {
     args.push_back(f);
   }
