@@ -172,24 +172,25 @@ TEST_CASE("verify writes a PNG, and refuses an unwritable one in one line withou
 }
 
 TEST_CASE("plan refused by the motion gate writes no CL file, names the line and exits 2",
-          "[slow]") {
-  // A gate tolerance of 0.01 um is finer than the plan's own rounding: its first cut that
-  // reaches deeper is refused where it stands.
+          "[parts][slow]") {
+  // A gate tolerance of 0.1 um is finer than the plan's own rounding on the dome: its first
+  // cut that reaches deeper is refused where it stands.
   TempDir dir;
-  const auto cl = (dir.path() / "plane.cl").string();
-  const auto plan = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6",
-                                 "--scallop", "0.05", "--gate-tolerance", "0.00001", "-o", cl});
+  const auto cl = (dir.path() / "dome.cl").string();
+  const auto plan = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
+                                 "ball:6", "--scallop", "0.05", "--refine", "2",
+                                 "--gate-tolerance", "0.0001", "-o", cl});
   CHECK(plan.exit_code == 2);
   INFO(plan.err);
   CHECK(plan.err.rfind("subfeed: error: " + cl + ":", 0) == 0);
-  CHECK(plan.err.find(": tool path refused: the ") != std::string::npos);
-  CHECK(plan.err.find("mm into the part (tolerance 1e-05 mm) at (") != std::string::npos);
+  CHECK(plan.err.find(": tool path refused: the cutting move from (") != std::string::npos);
+  CHECK(plan.err.find("mm into the part (tolerance 0.0001 mm) at (") != std::string::npos);
   CHECK(plan.err.find("; nothing written\n") != std::string::npos);
   CHECK(std::count(plan.err.begin(), plan.err.end(), '\n') == 1);
   CHECK_FALSE(std::filesystem::exists(cl));
   // At the default 1 um the same plan passes and says what was checked.
   const auto passed = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
-                                   "ball:6", "--scallop", "0.05", "-o", cl});
+                                   "ball:6", "--scallop", "0.05", "--refine", "2", "-o", cl});
   REQUIRE(passed.exit_code == 0);
   CHECK(passed.out.find("checked against the part (its mesh within 0.25 um): no cut deeper than "
                         "1 um, no rapid touching it") != std::string::npos);
