@@ -177,9 +177,9 @@ TEST_CASE("plan refused by the motion gate writes no CL file, names the line and
   // cut that reaches deeper is refused where it stands.
   TempDir dir;
   const auto cl = (dir.path() / "dome.cl").string();
-  const auto plan = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
-                                 "ball:6", "--scallop", "0.05", "--refine", "2",
-                                 "--gate-tolerance", "0.0001", "-o", cl});
+  const auto plan =
+      run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6", "--scallop",
+                   "0.05", "--refine", "2", "--gate-tolerance", "0.0001", "-o", cl});
   CHECK(plan.exit_code == 2);
   INFO(plan.err);
   CHECK(plan.err.rfind("subfeed: error: " + cl + ":", 0) == 0);

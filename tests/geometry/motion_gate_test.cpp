@@ -24,8 +24,8 @@ struct Part {
   geometry::LimitSurface surface;
 };
 
-Part part(double a, double z0 = 0.0) {
-  auto cage = subfeed::testing::lifted(subfeed::testing::grid_cage(9, 5.0, a, a), z0);
+Part part(double a, double z0 = 0.0, int n = 9) {
+  auto cage = subfeed::testing::lifted(subfeed::testing::grid_cage(n, 5.0, a, a), z0);
   auto surface = geometry::LimitSurface::build(cage);
   REQUIRE(surface);
   return {std::move(cage), std::move(*surface)};
@@ -113,21 +113,21 @@ TEST_CASE("the gate refuses a rapid through the part and one that only grazes it
 TEST_CASE("the gate measures the sweep between poses, not only the poses", "[unit]") {
   // Two poses that each touch a dome exactly: the straight move between them cuts through
   // the top by the CL curve's sagitta, which no check of the poses alone could see.
-  for (const double a : {-0.01, -0.02, -0.04}) {
+  for (const double a : {-0.01, -0.04}) {
     for (const double z0 : {0.0, 20.0}) {
       INFO("dome a = " << a << ", lifted " << z0 << " mm");
-      const auto dome = part(a, z0);
+      const auto dome = part(a, z0, 5); // interior faces, where it is exact: |x|, |y| < 5
       auto gate = gate_for(dome);
-      REQUIRE(gate.check(on_dome(a, -6, 1, z0)));
+      REQUIRE(gate.check(on_dome(a, -4.5, 1, z0)));
       auto alone = gate_for(dome);
-      REQUIRE(alone.check(on_dome(a, 6, 1, z0)));
-      const auto over = gate.check(on_dome(a, 6, 1, z0));
+      REQUIRE(alone.check(on_dome(a, 4.5, 1, z0)));
+      const auto over = gate.check(on_dome(a, 4.5, 1, z0));
       REQUIRE_FALSE(over);
       CHECK(over.error().message.find("cuts") != std::string::npos);
-      // Small steps along the same line touch all the way.
-      auto stepped = gate_for(dome);
-      for (double x = -6; x <= 6 + 1e-9; x += 0.05) {
-        const auto step = stepped.check(on_dome(a, x, 1, z0));
+      // Small steps along the same line, from where the refused move left the gate (at its
+      // last accepted pose), touch all the way.
+      for (double x = -4.4; x <= 4.5 + 1e-9; x += 0.1) {
+        const auto step = gate.check(on_dome(a, x, 1, z0));
         INFO("x = " << x);
         REQUIRE(step);
       }
