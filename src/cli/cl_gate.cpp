@@ -21,7 +21,9 @@ Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_pat
   }
   SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(cage_path));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, level));
-  return geometry::MotionGate::build(cage, surface, {cutter.diameter / 2, tolerance_mm});
+  return geometry::MotionGate::build(
+      cage, surface,
+      {cutter.diameter / 2, tolerance_mm > 0.0 ? tolerance_mm : geometry::default_gate_tolerance});
 }
 
 } // namespace subfeed::cli

@@ -10,7 +10,8 @@
 
 namespace subfeed::cli {
 
-// A cutter other than a ball end is refused: the gate cannot yet measure it.
+// A cutter other than a ball end is refused: the gate cannot yet measure it. A tolerance of
+// 0 is the gate's default.
 [[nodiscard]] Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage,
                                                          const cl::ClHeader& header, int level,
                                                          double tolerance_mm);

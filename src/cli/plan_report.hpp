@@ -1,6 +1,7 @@
 #pragma once
 // What a plan tells the user beyond its totals: where the ball cannot reach, so that
-// material will be left there (plan and run both say it).
+// material will be left there, and what the motion gate checked or refused (plan and run
+// both say it).
 
 #include "cl/cl_writer.hpp"
 #include "geometry/toolpath_planner.hpp"

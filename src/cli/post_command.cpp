@@ -33,7 +33,7 @@ struct PostCommandOptions {
   bool no_look_ahead = false;
   double spindle = 0.0;
   std::string cage;            // check every move against its part first
-  double gate_tolerance = 0.0; // mm; 0: 1 um
+  double gate_tolerance = 0.0; // mm; 0: the gate's default
   int level = geometry::min_approx_level;
 };
 
@@ -65,8 +65,7 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
   std::optional<geometry::MotionGate> gate;
   if (!o.cage.empty()) {
     SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
-    SUBFEED_TRY_ASSIGN(auto built, gate_for_cl(o.cage, reader.header(), o.level,
-                                               o.gate_tolerance > 0.0 ? o.gate_tolerance : 1e-3));
+    SUBFEED_TRY_ASSIGN(auto built, gate_for_cl(o.cage, reader.header(), o.level, o.gate_tolerance));
     gate.emplace(std::move(built));
     options.check = [&gate](const cl::ClPose& pose) { return gate->check(pose); };
   }

@@ -119,9 +119,8 @@ Expected<JobSpec> cl_job_spec(const RunOptions& o, post::MachineConfig machine) 
                 {{}, 0, "--cage"});
   }
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(o.cage)); // the header, checked now
-  SUBFEED_TRY_ASSIGN(auto gate,
-                     gate_for_cl(o.check_cage, reader.header(), o.plan.level,
-                                 o.plan.gate_tolerance > 0.0 ? o.plan.gate_tolerance : 1e-3));
+  SUBFEED_TRY_ASSIGN(
+      auto gate, gate_for_cl(o.check_cage, reader.header(), o.plan.level, o.plan.gate_tolerance));
   auto post = post_options_for(machine, o);
   post.look_ahead = true; // the whole path exists: choose the start as `post` does
   JobSpec spec{.plan = std::nullopt,

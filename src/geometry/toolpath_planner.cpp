@@ -54,7 +54,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   const auto rates = rates_for_tolerance(surface, chord, options.max_rate);
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
-  const double gate_tolerance = options.gate_tolerance.value_or(std::max(1e-3, 2.5 * chord));
+  const double gate_tolerance =
+      options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
   SUBFEED_TRY_ASSIGN(auto gate,
                      MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}));
   ToolpathPlanner planner(options, std::move(mesh), std::move(gate));

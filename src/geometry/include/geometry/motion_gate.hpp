@@ -32,9 +32,12 @@
 
 namespace subfeed::geometry {
 
+// mm a feed, plunge or retract may cut below the surface unless told otherwise.
+inline constexpr double default_gate_tolerance = 1e-3;
+
 struct GateOptions {
-  double ball_radius = 3.0; // mm
-  double tolerance = 1e-3;  // mm a feed, plunge or retract may cut below the surface
+  double ball_radius = 3.0;                  // mm
+  double tolerance = default_gate_tolerance; // mm
 };
 
 struct GateReport {
