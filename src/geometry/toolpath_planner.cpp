@@ -235,7 +235,6 @@ Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
     rejected_ = pose;
     return checked;
   }
-  summary_.gate = gate_.report();
   if (last_) {
     const double d = (tip_of(pose) - tip_of(*last_)).norm();
     (pose.kind == cl::MoveKind::feed ? summary_.cut_length : summary_.link_length) += d;
@@ -580,6 +579,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
     SUBFEED_TRY(put(
         pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
   }
+  summary_.gate = gate_.report();
   return {};
 }
 

@@ -113,7 +113,7 @@ struct PlanSummary {
   double link_length = 0.0;      // mm of retracts, rapids and plunges
   long stay_down_links = 0;      // links made by feed along the surface
   double stay_down_length = 0.0; // mm of them (counted in cut_length)
-  GateReport gate;               // what the motion gate checked
+  GateReport gate;               // what the motion gate checked, once run() has finished
 
   [[nodiscard]] bool rings() const { return !ring_centres.empty(); } // concentric passes cut
 };
