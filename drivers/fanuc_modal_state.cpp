@@ -1,5 +1,7 @@
 #include "drivers/fanuc_modal_state.hpp"
 
+#include "base/number_text.hpp"
+
 #include <cctype>
 #include <cstdlib>
 
@@ -77,7 +79,7 @@ void FanucModalState::apply(std::string_view block) {
   for (const Word& w : words(block)) {
     switch (w.letter) {
     case 'G':
-      if (const int group = g_group(std::atof(w.value.c_str())); group != 0) {
+      if (const int group = g_group(parse_double(w.value).value_or(-1.0)); group != 0) {
         groups_[group] = g_text(w.value);
         length_word = length_word || group == 8;
       }
@@ -95,7 +97,7 @@ void FanucModalState::apply(std::string_view block) {
       h = w.value;
       break;
     case 'M': {
-      const int m = std::atoi(w.value.c_str());
+      const auto m = static_cast<int>(parse_double(w.value).value_or(-1.0));
       if (m == 3 || m == 4 || m == 5) {
         spindle_ = "M0" + std::to_string(m);
       } else if (m == 7 || m == 8 || m == 9) {

@@ -1,5 +1,7 @@
 #include "drivers/grbl_reply.hpp"
 
+#include "base/number_text.hpp"
+
 #include <charconv>
 
 namespace subfeed::drivers {
@@ -7,21 +9,11 @@ namespace subfeed::drivers {
 namespace {
 
 std::optional<long> to_integer(std::string_view text) {
-  long value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size()) {
-    return std::nullopt;
-  }
-  return value;
+  return parse_long(text);
 }
 
 std::optional<double> to_number(std::string_view text) {
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size()) {
-    return std::nullopt;
-  }
-  return value;
+  return parse_double(text);
 }
 
 std::vector<std::string_view> split(std::string_view text, char separator) {

@@ -1,5 +1,7 @@
 #include "drivers/grbl_streamer.hpp"
 
+#include "drivers/line_ranges.hpp"
+
 #include <algorithm>
 #include <deque>
 #include <poll.h>
@@ -144,7 +146,14 @@ private:
   }
 
   void on_answer(const Reply& reply) {
+    const int code = reply.kind == ReplyKind::ok ? 0 : reply.code;
     if (in_flight_.empty()) {
+      if (lost_in_reset_.size() > answers_after_reset_.size()) {
+        // The controller reset itself: what it still answers are the last lines sent, which
+        // reached it after its restart. Which ones is known once it has been stopped.
+        answers_after_reset_.push_back(code);
+        return;
+      }
       ++unknown_; // an answer to nothing (e.g. a CRLF's second ok): never retires a line
       return;
     }
@@ -156,14 +165,22 @@ private:
       latch_code_ = 0;
     }
     if (line.file_line == 0) {
-      command_reply_ = reply.kind == ReplyKind::ok ? 0 : reply.code;
+      command_reply_ = code;
       return;
     }
+    retire(line.file_line, code);
+  }
+
+  void retire(long file_line, int code) {
     ++lines_acked_;
-    last_acked_line_ = line.file_line;
-    observer_.line_answered(line.file_line, reply.kind == ReplyKind::ok ? 0 : reply.code);
-    if (reply.kind == ReplyKind::error) {
-      on_line_error(line.file_line, reply.code);
+    last_acked_line_ = file_line;
+    observer_.line_answered(file_line, code);
+    if (code != 0) {
+      if (fault_) {
+        not_run_.push_back(file_line); // refused after the fault (grblHAL's latch, error:9)
+      } else {
+        on_line_error(file_line, code);
+      }
     }
     report_progress();
   }
@@ -174,7 +191,7 @@ private:
       (void)realtime(rt::feed_hold);
       fail_with(ErrorCode::machine_fault,
                 "controller error:" + std::to_string(code) + " (" +
-                    std::string(error_meaning(code)) + ")" + in_flight_note(),
+                    std::string(error_meaning(code)) + ")",
                 file_line);
       return;
     }
@@ -195,7 +212,7 @@ private:
     observer_.link_event("alarm", "ALARM:" + std::to_string(code));
     fail_with(ErrorCode::machine_fault,
               "controller ALARM:" + std::to_string(code) + " (" + std::string(alarm_meaning(code)) +
-                  "); streaming stopped" + acked_note(),
+                  "); streaming stopped",
               last_acked_line_);
     motion_stopped_ = true; // the controller stopped itself
   }
@@ -208,10 +225,34 @@ private:
       return;
     }
     observer_.link_event("reset", reply.text);
-    fail_with(ErrorCode::machine_fault,
-              "the controller reset itself (welcome message mid-job)" + acked_note(),
+    fail_with(ErrorCode::machine_fault, "the controller reset itself (welcome message mid-job)",
               last_acked_line_);
-    motion_stopped_ = true;
+    // Its buffers are empty now, but lines still on their way will run: it is held and
+    // reset as after an error, and what it answers meanwhile is matched to the newest lines.
+    settle_reset();
+    lost_in_reset_.assign(in_flight_.begin(), in_flight_.end());
+    in_flight_.clear();
+    rx_used_ = 0;
+  }
+
+  // Matches the answers given since the controller reset itself to the newest of the lines
+  // it held then; the older ones were lost in the reset.
+  void settle_reset() {
+    const std::size_t answered = std::min(answers_after_reset_.size(), lost_in_reset_.size());
+    const std::size_t lost = lost_in_reset_.size() - answered;
+    for (std::size_t i = 0; i < lost_in_reset_.size(); ++i) {
+      const long file_line = lost_in_reset_[i].file_line;
+      if (file_line == 0) {
+        continue;
+      }
+      if (i < lost) {
+        not_run_.push_back(file_line);
+      } else {
+        retire(file_line, answers_after_reset_[i - lost]);
+      }
+    }
+    lost_in_reset_.clear();
+    answers_after_reset_.clear();
   }
 
   void on_status(std::string_view line) {
@@ -255,33 +296,48 @@ private:
 
   std::unexpected<Error> link_lost(const Error& cause) {
     motion_stopped_ = true; // nothing more can be said to the controller
-    return fail(ErrorCode::machine_fault, cause.message + " (" + link_.name() + ")" + acked_note(),
+    return fail(ErrorCode::machine_fault,
+                cause.message + " (" + link_.name() + ")" + acked_note() +
+                    lines_note(unanswered_lines(), "sent and not acknowledged"),
                 {source_.name(), static_cast<int>(last_acked_line_), {}});
   }
 
   [[nodiscard]] std::string acked_note() const {
-    std::string note = last_acked_line_ > 0
-                           ? "; last line acknowledged: " + std::to_string(last_acked_line_)
-                           : "; no line was acknowledged";
-    return note + in_flight_note();
+    return last_acked_line_ > 0 ? "; last line acknowledged: " + std::to_string(last_acked_line_)
+                                : "; no line was acknowledged";
   }
 
-  [[nodiscard]] std::string in_flight_note() const {
-    long first = 0, last = 0, count = 0;
+  [[nodiscard]] std::vector<long> unanswered_lines() const {
+    std::vector<long> lines;
     for (const auto& f : in_flight_) {
       if (f.file_line > 0) {
-        first = first == 0 ? f.file_line : first;
-        last = f.file_line;
-        ++count;
+        lines.push_back(f.file_line);
       }
     }
-    if (count == 0) {
+    return lines;
+  }
+
+  // "; 3 line(s) <what> (lines 41-43)", or nothing for no lines.
+  static std::string lines_note(const std::vector<long>& lines, std::string_view what) {
+    if (lines.empty()) {
       return "";
     }
-    return "; " + std::to_string(count) + " line(s) sent but not run (" +
-           (first == last ? "line " + std::to_string(first)
-                          : "lines " + std::to_string(first) + "-" + std::to_string(last)) +
-           ")";
+    return "; " + std::to_string(lines.size()) + " line(s) " + std::string(what) + " (" +
+           describe_lines(lines) + ")";
+  }
+
+  // What became of the lines sent, once the controller has been stopped: acknowledged, or
+  // refused and dropped (not run), or, when it could not be stopped, still waiting in it.
+  [[nodiscard]] std::string outcome_note(bool stopped) {
+    settle_reset();
+    std::vector<long> not_run = not_run_;
+    std::vector<long> waiting = unanswered_lines();
+    if (stopped) { // an alarmed controller runs nothing more; a reset emptied it
+      not_run.insert(not_run.end(), waiting.begin(), waiting.end());
+      waiting.clear();
+    }
+    return acked_note() + lines_note(not_run, "sent but not run") +
+           lines_note(waiting, "sent and not answered, still in the controller");
   }
 
   // Brings the machine to a safe stop after a fault or a stop command: feed hold, wait for
@@ -332,7 +388,9 @@ private:
       SUBFEED_TRY(pump(20ms));
     }
     expecting_reset_ = false;
-    in_flight_.clear(); // a reset empties the controller's buffers
+    const auto dropped = unanswered_lines(); // a reset empties the controller's buffers
+    not_run_.insert(not_run_.end(), dropped.begin(), dropped.end());
+    in_flight_.clear();
     rx_used_ = 0;
     return {};
   }
@@ -341,21 +399,38 @@ private:
   // the path): what was sent is all that may run; the machine is held and reset.
   Expected<void> source_failed(const Error& error) {
     if (!fault_) {
-      fault_ = Error{error.code, error.message + acked_note(), error.where};
+      fault_ = error;
     }
     return check_fault();
   }
 
-  // Turns a recorded fault into the stream's result, after stopping the machine.
+  // Turns a recorded fault into the stream's result, after stopping the machine; the report
+  // of what ran is made only then, when every answer the controller still gave is in.
   Expected<void> check_fault() {
     if (!fault_) {
       return {};
     }
-    const Error error = *fault_;
-    if (auto stopped = stop_machine(); !stopped) {
-      return fail(error.code, error.message + "; " + stopped.error().message, error.where);
+    Error error = *fault_;
+    const bool stopped_itself = motion_stopped_;
+    const auto stopped = stop_machine();
+    if (stopped_itself) {
+      settle();
+    }
+    error.message += outcome_note(stopped.has_value());
+    if (!stopped) {
+      error.message += "; " + stopped.error().message;
     }
     return std::unexpected(error);
+  }
+
+  // Reads what an alarmed controller still says, until it has been quiet a while.
+  void settle() {
+    const auto deadline = Clock::now() + 1000ms;
+    while (Clock::now() < deadline && Clock::now() - last_byte_at_ < 150ms) {
+      if (!pump(20ms)) {
+        return;
+      }
+    }
   }
 
   Expected<void> handle_inbox() {
@@ -364,7 +439,7 @@ private:
     }
     for (const ControlCommand& command : inbox_->take()) {
       if (command.kind == ControlCommand::Kind::stop) {
-        fail_with(ErrorCode::stopped, "stopped by the user" + acked_note(), last_acked_line_);
+        fail_with(ErrorCode::stopped, "stopped by the user", last_acked_line_);
       } else {
         SUBFEED_TRY(realtime(command.byte));
       }
@@ -379,7 +454,7 @@ private:
     if (now - last_byte_at_ > options_.silence_timeout) {
       fail_with(ErrorCode::machine_fault,
                 "no answer from the controller for " +
-                    std::to_string(options_.silence_timeout.count()) + " ms" + acked_note(),
+                    std::to_string(options_.silence_timeout.count()) + " ms",
                 last_acked_line_);
     } else if (!in_flight_.empty() && status_ &&
                (status_->state == "Idle" || status_->state == "Check") &&
@@ -574,7 +649,7 @@ private:
     bool end_of_file = false;
     while (true) {
       SUBFEED_TRY(turn_and_clear_latch());
-      while (!end_of_file) {
+      while (!end_of_file && !fault_) { // not one line more once a fault has been read
         if (!next) {
           auto read = source_.next();
           if (!read) {
@@ -602,7 +677,7 @@ private:
   }
 
   Expected<void> turn_and_clear_latch() {
-    if (clear_latch_ && rx_used_ + 1 <= info_.rx_buffer) {
+    if (clear_latch_ && !fault_ && rx_used_ + 1 <= info_.rx_buffer) {
       clear_latch_ = false; // grblHAL: an empty line ends the error latch
       SUBFEED_TRY(send_bytes_counted("", {0, 0, false, true}));
     }
@@ -653,6 +728,9 @@ private:
 
   ControllerInfo info_;
   std::deque<InFlight> in_flight_;
+  std::vector<long> not_run_;            // refused after a fault, or dropped by a reset
+  std::vector<InFlight> lost_in_reset_;  // in flight when the controller reset itself
+  std::vector<int> answers_after_reset_; // its answers since, 0 for ok
   int rx_used_ = 0;
   std::string partial_;
   std::optional<StatusReport> status_;

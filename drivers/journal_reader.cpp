@@ -1,5 +1,7 @@
 #include "drivers/journal_reader.hpp"
 
+#include "base/number_text.hpp"
+
 #include <charconv>
 #include <fstream>
 
@@ -22,11 +24,7 @@ std::optional<std::string_view> field(std::string_view record, std::string_view 
 }
 
 long number(std::optional<std::string_view> text) {
-  long value = 0;
-  if (text) {
-    std::from_chars(text->data(), text->data() + text->size(), value);
-  }
-  return value;
+  return text ? parse_long(*text).value_or(0) : 0;
 }
 
 } // namespace

@@ -1,5 +1,7 @@
 #include "gcode_words.hpp"
 
+#include "base/number_text.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <string>
@@ -35,17 +37,11 @@ Expected<std::vector<GcodeWord>> split_words(std::string_view line) {
                                text[j] == '.' || text[j] == '-' || text[j] == '+')) {
       ++j;
     }
-    std::string_view number(text.data() + i + 1, j - i - 1);
-    if (!number.empty() && number.front() == '+') {
-      number.remove_prefix(1);
-    }
-    GcodeWord word{letter, 0.0};
-    const auto [end, ec] =
-        std::from_chars(number.data(), number.data() + number.size(), word.value);
-    if (number.empty() || ec != std::errc{} || end != number.data() + number.size()) {
+    const auto value = parse_double(std::string_view(text.data() + i + 1, j - i - 1));
+    if (!value) {
       return fail(ErrorCode::bad_input, std::string("word ") + letter + " has no valid number");
     }
-    words.push_back(word);
+    words.push_back(GcodeWord{letter, *value});
     i = j;
   }
   return words;

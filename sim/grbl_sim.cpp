@@ -97,6 +97,7 @@ public:
     copy.state = state_name();
     copy.check_mode = check_mode_;
     copy.starvations = planner_.starvations();
+    copy.waiting = program_lines_in_rx(copy.waiting_count);
     return copy;
   }
 
@@ -279,7 +280,7 @@ private:
 
   void raise_alarm(int code) {
     drop_queue();
-    rx_.clear();
+    drop_rx();
     holding_ = false;
     alarm_locked_ = true;
     critical_ = true; // nothing more is read until a reset
@@ -289,7 +290,7 @@ private:
   }
 
   void power_up() {
-    rx_.clear();
+    drop_rx();
     drop_queue();
     interpreter_.reset();
     holding_ = false;
@@ -317,6 +318,52 @@ private:
   }
 
   // ---- lines ------------------------------------------------------------------------------
+
+  // The program lines (not `$` commands, not blank) in the RX buffer, a line cut short at its
+  // end included; `count` gets how many, the texts are kept only when recording.
+  std::vector<std::string> program_lines_in_rx(long& count) const {
+    std::vector<std::string> lines;
+    count = 0;
+    std::string raw;
+    for (std::size_t i = 0; i <= rx_.size(); ++i) {
+      if (i < rx_.size() && rx_[i] != '\n' && rx_[i] != '\r') {
+        raw += rx_[i];
+        continue;
+      }
+      const std::string line = strip_line(raw);
+      raw.clear();
+      if (!line.empty() && line[0] != '$') {
+        ++count;
+        if (options_.record_executed) {
+          lines.push_back(line);
+        }
+      }
+    }
+    return lines;
+  }
+
+  // A reset, an alarm or an EEPROM write empties the RX buffer unread.
+  void drop_rx() {
+    long count = 0;
+    auto lines = program_lines_in_rx(count);
+    drop_lines(std::move(lines), count);
+    rx_.clear();
+  }
+
+  void drop_lines(std::vector<std::string> lines, long count) {
+    stats_.dropped_count += count;
+    stats_.dropped.insert(stats_.dropped.end(), std::make_move_iterator(lines.begin()),
+                          std::make_move_iterator(lines.end()));
+  }
+
+  // A program line answered with an error: received, not run.
+  void refuse(const std::string& line, int code) {
+    ++stats_.refused_count;
+    if (options_.record_executed) {
+      stats_.refused.push_back(line);
+    }
+    reply_error(code);
+  }
 
   [[nodiscard]] bool has_complete_line() const {
     return std::ranges::find_if(rx_, [](char c) { return c == '\n' || c == '\r'; }) != rx_.end();
@@ -347,7 +394,7 @@ private:
     }
     if (static_cast<int>(line.size()) > options_.line_limit) {
       count_program_line(line);
-      reply_error(error_line_overflow);
+      refuse(line, error_line_overflow);
       return;
     }
     if (line[0] == '$') {
@@ -370,7 +417,7 @@ private:
   void eeprom_write() {
     if (!rx_.empty()) {
       ++stats_.eeprom_violations;
-      rx_.clear();
+      drop_rx();
     }
   }
 
@@ -379,14 +426,17 @@ private:
     const long number = stats_.program_lines;
     const auto& f = options_.faults;
     if (f.disconnect_on_line && number == *f.disconnect_on_line) {
+      drop_lines(recorded(line), 1);
       channel_->close();
       return;
     }
     if (f.freeze_on_line && number == *f.freeze_on_line) {
+      drop_lines(recorded(line), 1);
       frozen_ = true;
       return;
     }
     if (f.reset_on_line && number == *f.reset_on_line) {
+      drop_lines(recorded(line), 1); // the brown-out took it before it ran
       power_up();
       return;
     }
@@ -394,20 +444,20 @@ private:
       send(std::string("\xfe\xff#@!") + '\x07' + "~~");
     }
     if (alarm_locked_) {
-      reply_error(error_locked);
+      refuse(line, error_locked);
       return;
     }
     if (latched_error_ != 0) {
-      reply_error(latched_error_);
+      refuse(line, latched_error_);
       return;
     }
     if (f.error_on_line && number == *f.error_on_line) {
-      reply_error(f.error_code);
+      refuse(line, f.error_code);
       return;
     }
     const SimLineResult result = interpreter_.execute(line, planner_.planned_end());
     if (result.error != 0) {
-      reply_error(result.error);
+      refuse(line, result.error);
       return;
     }
     if (check_mode_) {
@@ -428,6 +478,10 @@ private:
       return;
     }
     reply_ok();
+  }
+
+  [[nodiscard]] std::vector<std::string> recorded(const std::string& line) const {
+    return options_.record_executed ? std::vector<std::string>{line} : std::vector<std::string>{};
   }
 
   void record_executed(const std::string& line, bool queued_move) {

@@ -1,5 +1,7 @@
 #include "sim/machine_state_file.hpp"
 
+#include "base/number_text.hpp"
+
 #include <array>
 #include <cerrno>
 #include <cstdio>
@@ -21,12 +23,16 @@ std::optional<AxisArray> parse(const char* text, std::size_t size) {
   }
   AxisArray p{};
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const std::string word(text + i * field, field);
-    char* end = nullptr;
-    p[i] = std::strtod(word.c_str(), &end);
-    if (end == word.c_str()) {
+    std::string_view word(text + i * field, field);
+    const auto first = word.find_first_not_of(' ');
+    const auto last = word.find_last_not_of(' ');
+    const auto value = first == std::string_view::npos
+                           ? std::nullopt
+                           : parse_double(word.substr(first, last - first + 1));
+    if (!value) {
       return std::nullopt;
     }
+    p[i] = *value;
   }
   return p;
 }

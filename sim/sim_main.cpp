@@ -2,6 +2,7 @@
 // protocol is a subcommand; the address a sender connects to (a tty path, or host:port) is
 // printed on stdout and the simulator serves until it is sent SIGINT or SIGTERM.
 
+#include "base/number_text.hpp"
 #include "sim/fanuc_sim.hpp"
 #include "sim/grbl_sim.hpp"
 #include "sim/pty.hpp"
@@ -15,6 +16,11 @@
 namespace {
 
 using namespace subfeed::sim;
+
+// Refusals as one plain sentence; CLI11's PositiveNumber prints its range up to 1.8e308.
+CLI::Validator positive_number() {
+  return {[](std::string& text) { return subfeed::positive_number_problem(text, false); }, "> 0"};
+}
 
 // Opens --machine-state if given; false (having said why) when it cannot be used.
 bool open_machine_state(const std::string& path, std::shared_ptr<MachineStateFile>& state) {
@@ -62,37 +68,45 @@ void add_grbl_options(CLI::App& cmd, GrblCommand& c) {
   cmd.add_flag("--grblhal", c.sim.grblhal, "Behave as grblHAL (banner, [OPT:], latching errors)");
   cmd.add_flag("--wpos", c.sim.report_wpos, "Report WPos instead of MPos");
   cmd.add_option("--speed", c.sim.motion.speed, "Run the machine N times faster than real time")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd.add_option("--accel", c.sim.motion.acceleration_mm_s2, "Acceleration, mm/s^2")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd.add_option("--rapid", c.sim.motion.rapid_mm_min, "Rapid rate, mm/min")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd.add_option("--tcp", c.tcp, "Serve on TCP HOST:PORT instead of a pty (port 0: any free)");
   add_state_options(cmd, c.sim.record.executed_log, c.machine_state);
   cmd.add_option("--work-offset", c.work_offset,
                  "G54 from the machine's zero, X,Y,Z[,A,B,C] (reported as WCO)")
       ->delimiter(',')
       ->expected(3, 6);
-  cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error");
+  cmd.add_option("--error-on-line", c.error_on_line, "Fault: answer program line K with an error")
+      ->check(positive_number());
   cmd.add_option("--error-code", c.sim.faults.error_code, "Error code for --error-on-line")
       ->check(CLI::Range(1, 255));
   cmd.add_option("--alarm-after", c.alarm_after_s,
-                 "Fault: ALARM this many seconds after the first program line");
+                 "Fault: ALARM this many seconds after the first program line")
+      ->check(positive_number());
   cmd.add_option("--alarm-code", c.sim.faults.alarm_code, "Alarm code for --alarm-after")
       ->check(CLI::Range(1, 255));
   cmd.add_option("--reset-on-line", c.reset_on_line,
-                 "Fault: the controller resets itself at program line K");
+                 "Fault: the controller resets itself at program line K")
+      ->check(positive_number());
   cmd.add_option("--disconnect-on-line", c.disconnect_on_line,
-                 "Fault: the link drops at program line K");
+                 "Fault: the link drops at program line K")
+      ->check(positive_number());
   cmd.add_option("--garbage-on-line", c.garbage_on_line,
-                 "Fault: line noise before the reply to program line K");
+                 "Fault: line noise before the reply to program line K")
+      ->check(positive_number());
   cmd.add_option("--lose-ack-on-line", c.lose_ack_on_line,
-                 "Fault: never acknowledge program line K");
+                 "Fault: never acknowledge program line K")
+      ->check(positive_number());
   cmd.add_option("--ack-delay", c.ack_delay_ms, "Fault: delay every reply by up to MS milliseconds")
-      ->type_name("MS");
+      ->type_name("MS")
+      ->check(CLI::Range(0L, 600000L));
   cmd.add_option("--seed", c.sim.faults.seed, "Random seed for delays");
   cmd.add_option("--boot-ms", c.boot_ms,
-                 "Boot time after a connection (GRBL on Arduino resets on open)");
+                 "Boot time after a connection (GRBL on Arduino resets on open)")
+      ->check(CLI::Range(0L, 600000L));
 }
 
 std::optional<long> positive(long v) {
@@ -127,11 +141,15 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
     channel = std::make_unique<Pty>(std::move(*pty));
   } else {
     const auto colon = c.tcp.rfind(':');
-    auto listener =
-        colon == std::string::npos
-            ? subfeed::Expected<TcpListener>(
-                  subfeed::fail(subfeed::ErrorCode::usage, "expected HOST:PORT", {{}, 0, "--tcp"}))
-            : TcpListener::open(c.tcp.substr(0, colon), std::stoi(c.tcp.substr(colon + 1)));
+    const auto port = colon == std::string::npos
+                          ? std::nullopt
+                          : subfeed::parse_int(std::string_view(c.tcp).substr(colon + 1));
+    if (colon == 0 || !port || *port < 0 || *port > 65535) {
+      std::cerr << "subfeed-sim: usage: --tcp: expected HOST:PORT with a port 0..65535, got '"
+                << c.tcp << "'" << std::endl;
+      return 1;
+    }
+    auto listener = TcpListener::open(c.tcp.substr(0, colon), *port);
     if (!listener) {
       std::cerr << "subfeed-sim: error: " << listener.error().describe() << std::endl;
       return subfeed::exit_code(listener.error().code);
@@ -145,11 +163,13 @@ int serve_grbl(GrblCommand& c, const sigset_t& signals) {
   sigwait(&signals, &signal);
   sim.stop();
   const auto stats = sim.stats();
-  std::cerr << "subfeed-sim: " << stats.executed_count << " lines executed, " << stats.overrun_bytes
-            << " bytes overrun, " << stats.eeprom_violations << " EEPROM violations, "
-            << stats.alarms_sent << " alarms, " << stats.resets << " resets, " << stats.feed_holds
-            << " feed holds, " << stats.overrides << " overrides, " << stats.starvations
-            << " planner starvations, state " << stats.state << std::endl;
+  std::cerr << "subfeed-sim: " << stats.executed_count << " lines executed, " << stats.refused_count
+            << " refused, " << stats.dropped_count + stats.waiting_count << " dropped unread, "
+            << stats.overrun_bytes << " bytes overrun, " << stats.eeprom_violations
+            << " EEPROM violations, " << stats.alarms_sent << " alarms, " << stats.resets
+            << " resets, " << stats.feed_holds << " feed holds, " << stats.overrides
+            << " overrides, " << stats.starvations << " planner starvations, state " << stats.state
+            << std::endl;
   return 0;
 }
 
@@ -182,14 +202,18 @@ void add_fanuc_options(CLI::App& cmd, FanucCommand& c) {
                "Ask for the tape (DC1) when a sender connects");
   cmd.add_flag("--eia", c.sim.eia_cr, "Blocks end with CR (EIA option) instead of LF");
   cmd.add_option("--speed", c.sim.motion.speed, "Run the machine N times faster than real time")
-      ->check(CLI::PositiveNumber);
-  cmd.add_option("--stuck-xoff-at", c.stuck_xoff_at, "Fault: DC3 at block K and never DC1 again");
+      ->check(positive_number());
+  cmd.add_option("--stuck-xoff-at", c.stuck_xoff_at, "Fault: DC3 at block K and never DC1 again")
+      ->check(positive_number());
   cmd.add_option("--lose-xon-after", c.lose_xon_after,
-                 "Fault: the DC1 owed after block K is never sent");
-  cmd.add_option("--drop-at", c.drop_at, "Fault: the link drops at block K");
+                 "Fault: the DC1 owed after block K is never sent")
+      ->check(positive_number());
+  cmd.add_option("--drop-at", c.drop_at, "Fault: the link drops at block K")
+      ->check(positive_number());
   cmd.add_option("--max-pause", c.max_pause_ms,
                  "Drain jitter: random stalls of up to MS milliseconds")
-      ->type_name("MS");
+      ->type_name("MS")
+      ->check(CLI::Range(0L, 600000L));
   cmd.add_option("--seed", c.sim.seed, "Random seed for stalls");
   add_state_options(cmd, c.sim.record.executed_log, c.machine_state);
 }
@@ -258,6 +282,15 @@ int main(int argc, char** argv) {
   CLI::App* fanuc_cmd =
       app.add_subcommand("fanuc", "A Fanuc-style control reading a program by DNC");
   add_fanuc_options(*fanuc_cmd, fanuc);
+  // An unknown command would otherwise read "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const auto commands = app.get_subcommands([](CLI::App*) { return true; });
+    if (std::ranges::none_of(commands, [&](CLI::App* c) { return c->get_name() == argv[1]; })) {
+      std::cerr << "subfeed-sim: usage: unknown command '" << argv[1]
+                << "' (see subfeed-sim --help)" << std::endl;
+      return 1;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,5 +1,7 @@
 #include "cl/cl_reader.hpp"
 
+#include "base/number_text.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -28,18 +30,11 @@ std::optional<std::size_t> parse_numbers(std::string_view text, std::span<double
   std::size_t count = 0;
   while (true) {
     const auto comma = text.find(',');
-    auto field = trim(text.substr(0, comma));
-    if (!field.empty() && field.front() == '+') {
-      field.remove_prefix(1);
-    }
-    if (count == out.size() || field.empty()) {
+    const auto value = parse_double(trim(text.substr(0, comma)));
+    if (count == out.size() || !value) {
       return std::nullopt;
     }
-    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), out[count]);
-    if (ec != std::errc{} || end != field.data() + field.size() || !std::isfinite(out[count])) {
-      return std::nullopt;
-    }
-    ++count;
+    out[count++] = *value;
     if (comma == std::string_view::npos) {
       return count;
     }

@@ -6,6 +6,7 @@
 #include "logger.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <exception>
 #include <iostream>
@@ -46,6 +47,15 @@ int run(int argc, char** argv) {
   subfeed::cli::add_ports_command(app, chosen);
   subfeed::cli::add_post_command(app, chosen);
   subfeed::cli::add_check_command(app, chosen);
+  // An unknown command would otherwise read "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const auto commands = app.get_subcommands([](CLI::App*) { return true; });
+    if (std::ranges::none_of(commands, [&](CLI::App* c) { return c->get_name() == argv[1]; })) {
+      std::cerr << "subfeed: usage: unknown command '" << argv[1] << "' (see subfeed --help)"
+                << std::endl;
+      return 1;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

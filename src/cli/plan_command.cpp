@@ -100,7 +100,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          s.parallel_price));
   }
   log.info(gate_summary(s.gate));
-  report_unreachable(s, log);
+  report_left_material(s, log);
   return {};
 }
 

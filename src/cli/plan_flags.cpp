@@ -1,5 +1,7 @@
 #include "plan_flags.hpp"
 
+#include "base/number_text.hpp"
+
 #include "tool_spec.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,13 +17,8 @@ Expected<double> direction_deg(const std::string& text) {
   if (text == "y") {
     return 90.0;
   }
-  try {
-    std::size_t used = 0;
-    const double a = std::stod(text, &used);
-    if (used == text.size()) {
-      return a;
-    }
-  } catch (const std::exception&) {
+  if (const auto a = parse_double(text)) {
+    return *a;
   }
   return fail(ErrorCode::usage,
               "'" + text + "': expected x, y, auto, concentric or an angle in degrees",

@@ -1,5 +1,6 @@
 #include "plan_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -14,26 +15,115 @@ double shown_mm(double v) {
 
 } // namespace
 
-void report_unreachable(const geometry::PlanSummary& s, Logger& log) {
-  if (s.unreachable_vertices == 0 && s.lifted_points == 0) {
+namespace {
+
+// One place where material thicker than H is left, from a hollow or from lifted CL points.
+struct LeftPlace {
+  Eigen::Vector3d centre, low, high;
+  double material_mm = 0.0;
+  long vertices = 0;      // of the surface, in a hollow narrower than the ball
+  long lifted_points = 0; // CL points raised clear of the part there
+};
+
+bool near_box(const Eigen::Vector3d& p, const LeftPlace& place, double margin) {
+  return (p.array() >= place.low.array() - margin).all() &&
+         (p.array() <= place.high.array() + margin).all();
+}
+
+// Hollows first, then the lifted points no hollow explains; thickest first.
+std::vector<LeftPlace> places_left(const geometry::PlanSummary& s) {
+  std::vector<LeftPlace> places;
+  for (const auto& r : s.unreachable_regions) {
+    if (r.material_mm > s.scallop) {
+      places.push_back({r.centroid, r.low, r.high, r.material_mm, r.vertices, 0});
+    }
+  }
+  const std::size_t hollows = places.size();
+  for (const auto& r : s.lifted_regions) {
+    if (r.max_lift_mm <= s.scallop) {
+      continue;
+    }
+    const auto it =
+        std::find_if(places.begin(), places.begin() + static_cast<long>(hollows),
+                     [&](const LeftPlace& p) { return near_box(r.centroid, p, s.ball_radius); });
+    if (it != places.begin() + static_cast<long>(hollows)) {
+      it->lifted_points += r.points;
+      it->material_mm = std::max(it->material_mm, r.max_lift_mm);
+    } else {
+      places.push_back({r.centroid, r.low, r.high, r.max_lift_mm, 0, r.points});
+    }
+  }
+  std::ranges::stable_sort(places, std::greater{}, &LeftPlace::material_mm);
+  return places;
+}
+
+std::string describe(const LeftPlace& p) {
+  const Eigen::Vector3d size = p.high - p.low;
+  std::string why =
+      p.vertices > 0 ? fmt::format("a hollow narrower than the ball ({} surface "
+                                   "vertices{})",
+                                   p.vertices,
+                                   p.lifted_points > 0
+                                       ? fmt::format(", {} CL points lifted clear", p.lifted_points)
+                                       : "")
+                     : fmt::format("{} CL points lifted clear of the part (set on the "
+                                   "surface there, the ball would cut into it nearby)",
+                                   p.lifted_points);
+  return fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm, over {:.2f} x {:.2f} x {:.2f} mm: up "
+                     "to {:.3f} mm, {}",
+                     shown_mm(p.centre.x()), shown_mm(p.centre.y()), shown_mm(p.centre.z()),
+                     size.x(), size.y(), size.z(), p.material_mm, why);
+}
+
+// What stays under H, said once: true, and nothing to act on.
+std::string thinner_note(const geometry::PlanSummary& s) {
+  double hollow = 0.0, lift = 0.0;
+  long vertices = 0;
+  for (const auto& r : s.unreachable_regions) {
+    if (r.material_mm <= s.scallop) {
+      hollow = std::max(hollow, r.material_mm);
+      vertices += r.vertices;
+    }
+  }
+  long points = 0;
+  for (const auto& r : s.lifted_regions) {
+    if (r.max_lift_mm <= s.scallop) {
+      lift = std::max(lift, r.max_lift_mm);
+      points += r.points;
+    }
+  }
+  std::string note;
+  if (vertices > 0 && hollow >= 0.5e-4) { // a hollow that keeps nothing shown is noise
+    note += fmt::format("; {} surface vertices in hollows narrower than the ball keep at most "
+                        "{:.4f} mm",
+                        vertices, hollow);
+  }
+  if (points > 0) {
+    note += fmt::format("; {} CL points lifted clear of the part leave at most {:.4f} mm", points,
+                        lift);
+  }
+  return note;
+}
+
+} // namespace
+
+void report_left_material(const geometry::PlanSummary& s, Logger& log) {
+  const auto places = places_left(s);
+  if (places.empty()) {
+    log.info(fmt::format("  material left thicker than H ({:g} mm): none{}", s.scallop,
+                         thinner_note(s)));
     return;
   }
-  log.warning(fmt::format("  the ball cannot reach {} surface vertices (hollows narrower than "
-                          "the ball); {} CL points lifted clear there, leaving material",
-                          s.unreachable_vertices, s.lifted_points));
+  const double most = places.front().material_mm;
+  log.warning(fmt::format("  material thicker than H ({:g} mm) is left in {} place(s) the ball "
+                          "cannot follow, up to {:.3f} mm: finish them with a smaller ball",
+                          s.scallop, places.size(), most));
   constexpr std::size_t shown = 8;
-  const auto& regions = s.unreachable_regions;
-  for (std::size_t i = 0; i < std::min(shown, regions.size()); ++i) {
-    const auto& r = regions[i];
-    const Eigen::Vector3d size = r.high - r.low;
-    log.warning(
-        fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm: {} vertices over {:.2f} x {:.2f} "
-                    "x {:.2f} mm",
-                    shown_mm(r.centroid.x()), shown_mm(r.centroid.y()), shown_mm(r.centroid.z()),
-                    r.vertices, size.x(), size.y(), size.z()));
+  for (std::size_t i = 0; i < std::min(shown, places.size()); ++i) {
+    log.warning(describe(places[i]));
   }
-  if (regions.size() > shown) {
-    log.warning(fmt::format("    and {} smaller regions", regions.size() - shown));
+  if (places.size() > shown) {
+    log.warning(fmt::format("    and {} thinner", places.size() - shown));
   }
 }
 

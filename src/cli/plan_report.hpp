@@ -11,9 +11,10 @@
 
 namespace subfeed::cli {
 
-// Warns, with the regions located (largest first), when the ball cannot reach some of the
-// surface or CL points were lifted clear of hollows; says nothing otherwise.
-void report_unreachable(const geometry::PlanSummary& summary, Logger& log);
+// Where the ball leaves material thicker than the scallop height H (hollows narrower than
+// the ball, CL points lifted clear of the part): a warning locating each place, thickest
+// first. Otherwise one line saying none, with what stays under H.
+void report_left_material(const geometry::PlanSummary& summary, Logger& log);
 
 // The motion gate's line of the summary: how many moves it checked, and against what.
 [[nodiscard]] std::string gate_summary(const geometry::GateReport& gate);

@@ -1,5 +1,7 @@
 #include "restart_point.hpp"
 
+#include "base/number_text.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -26,12 +28,11 @@ bool apply_words(std::string_view line, LineEnd& end) {
     if (axis == std::string_view::npos && c != 'G') {
       continue; // only axis and G words matter: no number parsed for the others
     }
-    const std::string rest(line.substr(i + 1, 24));
-    char* stop = nullptr;
-    const double value = std::strtod(rest.c_str(), &stop);
-    if (stop == rest.c_str()) {
+    const auto number = parse_double_prefix(line.substr(i + 1));
+    if (!number) {
       continue;
     }
+    const double value = number->value;
     if (axis != std::string_view::npos) {
       end.words[axis] = value;
       axis_word = true;
@@ -122,12 +123,8 @@ std::optional<long> sequence_number(const std::string& text) {
   if (start == std::string::npos || std::toupper(static_cast<unsigned char>(text[start])) != 'N') {
     return std::nullopt;
   }
-  char* stop = nullptr;
-  const long n = std::strtol(text.c_str() + start + 1, &stop, 10);
-  if (stop == text.c_str() + start + 1) {
-    return std::nullopt;
-  }
-  return n;
+  const std::string_view rest = std::string_view(text).substr(start + 1);
+  return parse_long(rest.substr(0, rest.find_first_not_of("0123456789")));
 }
 
 } // namespace

@@ -14,10 +14,12 @@
 // Before the program continues, the modes are restored and the tool comes back safely
 // (restart_approach.hpp). All of it is shown first and sent only after a yes (or --yes).
 
+#include "base/number_text.hpp"
 #include "command.hpp"
 #include "control_thread.hpp"
 #include "controller_link.hpp"
 #include "job_pipeline.hpp"
+#include "option_checks.hpp"
 #include "restart_approach.hpp"
 #include "restart_point.hpp"
 #include "run_job.hpp"
@@ -321,15 +323,11 @@ Expected<Joints> parse_position(const std::string& text, const post::MachineConf
   std::vector<double> values;
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) {
-        throw std::invalid_argument(item);
-      }
-    } catch (const std::exception&) {
+    const auto value = parse_double(item);
+    if (!value) {
       return fail(ErrorCode::usage, "'" + item + "' is not a number", {{}, 0, "--at"});
     }
+    values.push_back(*value);
   }
   const auto axes = static_cast<std::size_t>(
       std::ranges::count_if(m.axes, [](const auto& a) { return a.has_value(); }));
@@ -547,10 +545,10 @@ void add_resume_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--machine", o->machine, "Machine config (default: the job's)")
       ->type_name("M.toml");
   cmd->add_option("--from", o->from, "Continue from this program line instead")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--block", o->block,
                   "DNC: the sequence number the control shows for the block it stopped in")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--at", o->at,
                   "DNC: the machine position the control shows, X,Y,Z[,A,B,C] (needed where "
                   "the tool tilts with the head)")

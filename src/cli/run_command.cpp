@@ -10,6 +10,7 @@
 #include "dry_run.hpp"
 #include "job_pipeline.hpp"
 #include "job_reporter.hpp"
+#include "option_checks.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
 #include "run_job.hpp"
@@ -55,7 +56,7 @@ Expected<drivers::StreamSummary> stream(const RunOptions& o, int sim_baud,
 
 void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter& reporter,
                    bool json, Logger& log) {
-  report_unreachable(t.plan, log);
+  report_left_material(t.plan, log);
   if (json) {
     std::printf("{\"event\":\"job\",\"passes\":%ld,\"cl_points\":%ld,\"lines\":%ld,"
                 "\"cut_mm\":%.3f,\"machine_min\":%.3f,\"first_block_s\":%.4f,"
@@ -148,7 +149,7 @@ void add_run_command(CLI::App& app, Action& chosen) {
   link->require_option(1);
   cmd->add_option("--sim-speed", o->sim_speed,
                   "With --sim: run the machine N times faster than real time")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--sim-baud", o->sim_baud,
                   "With --sim: emulated wire speed (0 = unlimited; DNC: 115200)")
       ->check(CLI::Range(0, 4000000));

@@ -1,5 +1,7 @@
 #include "run_job.hpp"
 
+#include "base/number_text.hpp"
+
 #include "cl_gate.hpp"
 
 #include "cl/cl_reader.hpp"
@@ -189,56 +191,56 @@ Expected<RunOptions> decode_job(std::string_view text, const Where& where) {
     text.remove_prefix(std::min(end + 1, text.size()));
   }
   RunOptions o;
-  try {
-    const auto get = [&](const char* key) -> const std::string& {
-      const auto it = fields.find(key);
-      if (it == fields.end()) {
-        throw std::invalid_argument(key);
-      }
-      return it->second;
-    };
-    o.cage = get("cage");
-    o.machine = get("machine");
-    o.output = get("output");
-    o.plan.tool = get("tool");
-    const auto real = [&](const char* key) {
-      try {
-        return std::stod(get(key));
-      } catch (const std::logic_error&) {
-        throw std::invalid_argument(key);
-      }
-    };
-    const auto integer = [&](const char* key) {
-      try {
-        return std::stoi(get(key));
-      } catch (const std::logic_error&) {
-        throw std::invalid_argument(key);
-      }
-    };
-    o.plan.scallop = real("scallop");
-    o.plan.direction = get("direction");
-    o.plan.baseline = get("baseline") == "1";
-    o.plan.axis_radius = real("axis_radius");
-    o.plan.axis = get("axis");
-    o.plan.one_way = get("one_way") == "1";
-    o.plan.feed = real("feed");
-    o.plan.plunge_feed = real("plunge_feed");
-    o.plan.clearance = real("clearance");
-    o.plan.tolerance = real("tolerance");
-    o.plan.level = integer("level");
-    o.plan.refine = integer("refine");
-    o.spindle_rpm = real("spindle");
-    // Journals from before stay-down links were planned with every link retracting.
-    o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
-    if (fields.contains("gate_tolerance")) {
-      o.plan.gate_tolerance = real("gate_tolerance");
+  std::string bad_key; // the first key missing or unreadable
+  const auto get = [&](const char* key) -> std::string {
+    const auto it = fields.find(key);
+    if (it == fields.end()) {
+      bad_key = bad_key.empty() ? key : bad_key;
+      return {};
     }
-    if (const auto it = fields.find("check_cage"); it != fields.end()) {
-      o.check_cage = it->second;
+    return it->second;
+  };
+  const auto real = [&](const char* key) {
+    const auto value = parse_double(get(key));
+    if (!value) {
+      bad_key = bad_key.empty() ? key : bad_key;
     }
-  } catch (const std::exception& e) {
-    return fail(ErrorCode::bad_input, std::string("job record without a valid '") + e.what() + "'",
-                where);
+    return value.value_or(0.0);
+  };
+  const auto integer = [&](const char* key) {
+    const auto value = parse_int(get(key));
+    if (!value) {
+      bad_key = bad_key.empty() ? key : bad_key;
+    }
+    return value.value_or(0);
+  };
+  o.cage = get("cage");
+  o.machine = get("machine");
+  o.output = get("output");
+  o.plan.tool = get("tool");
+  o.plan.scallop = real("scallop");
+  o.plan.direction = get("direction");
+  o.plan.baseline = get("baseline") == "1";
+  o.plan.axis_radius = real("axis_radius");
+  o.plan.axis = get("axis");
+  o.plan.one_way = get("one_way") == "1";
+  o.plan.feed = real("feed");
+  o.plan.plunge_feed = real("plunge_feed");
+  o.plan.clearance = real("clearance");
+  o.plan.tolerance = real("tolerance");
+  o.plan.level = integer("level");
+  o.plan.refine = integer("refine");
+  o.spindle_rpm = real("spindle");
+  // Journals from before stay-down links were planned with every link retracting.
+  o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
+  if (fields.contains("gate_tolerance")) {
+    o.plan.gate_tolerance = real("gate_tolerance");
+  }
+  if (const auto it = fields.find("check_cage"); it != fields.end()) {
+    o.check_cage = it->second;
+  }
+  if (!bad_key.empty()) {
+    return fail(ErrorCode::bad_input, "job record without a valid '" + bad_key + "'", where);
   }
   return o;
 }

@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "control_thread.hpp"
 #include "controller_link.hpp"
+#include "option_checks.hpp"
 #include "stream_reporter.hpp"
 
 #include "drivers/fanuc_program.hpp"
@@ -56,7 +57,7 @@ void apply_framing_flags(const SendOptions& o, drivers::SerialOptions& serial) {
     serial.baud = o.baud;
   }
   if (!o.data_bits.empty()) {
-    serial.data_bits = std::stoi(o.data_bits);
+    serial.data_bits = o.data_bits == "7" ? 7 : 8; // CLI11 let only 7 and 8 through
   }
   if (!o.parity.empty()) {
     serial.parity = o.parity == "even"  ? drivers::SerialParity::even
@@ -64,7 +65,7 @@ void apply_framing_flags(const SendOptions& o, drivers::SerialOptions& serial) {
                                         : drivers::SerialParity::none;
   }
   if (!o.stop_bits.empty()) {
-    serial.stop_bits = std::stoi(o.stop_bits);
+    serial.stop_bits = o.stop_bits == "2" ? 2 : 1;
   }
   if (!o.flow.empty()) {
     serial.flow = o.flow == "xon-xoff"  ? drivers::SerialFlow::xon_xoff
@@ -219,7 +220,7 @@ void add_send_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(0.1, 600.0));
   cmd->add_option("--sim-speed", o->sim_speed,
                   "With --sim: run the machine N times faster than real time")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--sim-baud", o->sim_baud, "With --sim: emulated wire speed (0 = unlimited)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
@@ -255,7 +256,7 @@ void add_send_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(0.1, 3600.0));
   cmd->add_option("--from", o->from_line,
                   "fanuc: restart at this file line, restoring the modal state first")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return send(*o, log); }; });
 }
 

@@ -1,5 +1,7 @@
 #include "tool_spec.hpp"
 
+#include "base/number_text.hpp"
+
 #include <charconv>
 #include <cmath>
 
@@ -7,14 +9,10 @@ namespace subfeed::cli {
 
 Expected<double> parse_ball_tool(const std::string& spec) {
   const std::string prefix = "ball:";
-  double diameter = 0.0;
   if (spec.starts_with(prefix)) {
-    const char* begin = spec.data() + prefix.size();
-    const char* end = spec.data() + spec.size();
-    const auto [ptr, ec] = std::from_chars(begin, end, diameter);
-    if (ec == std::errc{} && ptr == end && std::isfinite(diameter) && diameter > 0.0 &&
-        diameter <= 100.0) {
-      return diameter / 2.0;
+    const auto diameter = parse_double(std::string_view(spec).substr(prefix.size()));
+    if (diameter && *diameter > 0.0 && *diameter <= 100.0) {
+      return *diameter / 2.0;
     }
   }
   return fail(ErrorCode::usage,

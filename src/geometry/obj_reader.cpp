@@ -1,7 +1,11 @@
 #include "geometry/obj_reader.hpp"
 
+#include "base/number_text.hpp"
+
 #include "geometry/cage_validation.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -76,24 +80,23 @@ private:
   }
 
   Expected<double> number(std::string_view word) const {
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (ec != std::errc{} || end != word.data() + word.size()) {
-      return error("'" + std::string(word) + "' is not a number");
+    const auto value = parse_double(word);
+    if (!value) {
+      std::string lower(word.substr(word.starts_with('-') || word.starts_with('+') ? 1 : 0));
+      std::ranges::transform(lower, lower.begin(), [](unsigned char c) { return std::tolower(c); });
+      const bool infinite = lower.starts_with("nan") || lower.starts_with("inf");
+      return error(infinite ? "coordinate '" + std::string(word) + "' is not finite"
+                            : "'" + std::string(word) + "' is not a number");
     }
-    if (!std::isfinite(value)) {
-      return error("coordinate '" + std::string(word) + "' is not finite");
-    }
-    return value;
+    return *value;
   }
 
   Expected<long> integer(std::string_view word) const {
-    long value = 0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (ec != std::errc{} || end != word.data() + word.size()) {
+    const auto value = parse_long(word);
+    if (!value) {
       return error("'" + std::string(word) + "' is not an integer");
     }
-    return value;
+    return *value;
   }
 
   Expected<void> vertex(const std::vector<std::string_view>& words) {

@@ -138,10 +138,14 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   }
   auto& s = planner.summary_;
   s.rate = m.rate;
+  s.scallop = options.scallop;
+  s.ball_radius = r;
   s.mesh_vertices = m.vertex_count();
   s.mesh_triangles = m.triangle_count();
   s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
-  s.unreachable_regions = unreachable_regions(m, intervals.reachable);
+  planner.set_clear_balls();
+  s.unreachable_regions =
+      unreachable_regions(m, intervals.reachable, planner.material_left(intervals.reachable));
   s.min_interval = intervals.min_interval;
   s.max_interval = intervals.max_interval;
   s.reference = planner.deformation_.reference;
@@ -381,31 +385,35 @@ Expected<void> ToolpathPlanner::emit_nearest_first(std::vector<std::vector<PassP
   return {};
 }
 
+template <class Visit>
+void ToolpathPlanner::for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at,
+                                         Visit&& visit) const {
+  // A triangle inside the ball has a vertex within r plus its longest edge of the centre.
+  design.within(at, options_.ball_radius + longest_edge_, [&](int v) {
+    const auto u = static_cast<std::size_t>(v);
+    for (int k = around_.start[u]; k < around_.start[u + 1]; ++k) {
+      const auto& t =
+          mesh_.triangles[static_cast<std::size_t>(around_.triangles[static_cast<std::size_t>(k)])];
+      visit(at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
+                                     mesh_.points[static_cast<std::size_t>(t[1])],
+                                     mesh_.points[static_cast<std::size_t>(t[2])]));
+    }
+  });
+}
+
 double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
                                        const Eigen::Vector3d& dir) const {
   const double r = options_.ball_radius;
-  // A triangle inside the ball has a vertex within r plus its longest edge of the centre.
-  const double reach = r + longest_edge_;
   double total = 0.0;
   // Moving the ball moves the nearest point of a triangle, and a lifted ball can meet
   // triangles the first one did not (the far wall of a groove): a few rounds settle both.
   for (int round = 0; round < 8; ++round) {
-    const Eigen::Vector3d at = centre + total * dir;
     double lift = 0.0;
-    design.within(at, reach, [&](int v) {
-      const auto u = static_cast<std::size_t>(v);
-      for (int k = around_.start[u]; k < around_.start[u + 1]; ++k) {
-        const auto& t = mesh_.triangles[static_cast<std::size_t>(
-            around_.triangles[static_cast<std::size_t>(k)])];
-        const Eigen::Vector3d m =
-            at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
-                                     mesh_.points[static_cast<std::size_t>(t[1])],
-                                     mesh_.points[static_cast<std::size_t>(t[2])]);
-        const double c = m.squaredNorm() - r * r;
-        if (c < 0.0) {
-          const double b = m.dot(dir);
-          lift = std::max(lift, -b + std::sqrt(b * b - c));
-        }
+    for_near_triangles(design, centre + total * dir, [&](const Eigen::Vector3d& m) {
+      const double c = m.squaredNorm() - r * r;
+      if (c < 0.0) {
+        const double b = m.dot(dir);
+        lift = std::max(lift, -b + std::sqrt(b * b - c));
       }
     });
     total += lift;
@@ -414,6 +422,48 @@ double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vec
     }
   }
   return total;
+}
+
+void ToolpathPlanner::set_clear_balls() {
+  const double r = options_.ball_radius;
+  const PointGrid design(mesh_.points, r + longest_edge_);
+  clear_balls_.resize(mesh_.points.size());
+  for (std::size_t v = 0; v < clear_balls_.size(); ++v) {
+    const Eigen::Vector3d& n = mesh_.normals[v];
+    clear_balls_[v] = mesh_.points[v] + r * n;
+    clear_balls_[v] += clearance_lift(design, clear_balls_[v], n) * n;
+  }
+}
+
+double ToolpathPlanner::gap_to_ball(const std::vector<Eigen::Vector3d>& centres,
+                                    const PointGrid& balls, const Eigen::Vector3d& p,
+                                    double bound) const {
+  // Searched in widening rings until no ball further out could be nearer.
+  const double r = options_.ball_radius;
+  for (double ring = longest_edge_; ring > 0.0; ring *= 2.0) {
+    balls.within(p, r + std::min(ring, bound), [&](int u) {
+      bound = std::min(bound, (centres[static_cast<std::size_t>(u)] - p).norm() - r);
+    });
+    if (bound <= ring) {
+      break;
+    }
+  }
+  return std::max(0.0, bound);
+}
+
+std::vector<double> ToolpathPlanner::material_left(const std::vector<char>& reachable) const {
+  // Lifted along its own normal, a ball set off the middle of a pocket crosses it and climbs
+  // the far wall, so a vertex's material is its gap to the nearest of all the clear balls
+  // (the one set on the pocket's middle, for most), not to its own.
+  std::vector<double> material(reachable.size(), 0.0);
+  const PointGrid balls(clear_balls_, options_.ball_radius + longest_edge_);
+  for (std::size_t v = 0; v < reachable.size(); ++v) {
+    if (reachable[v] == 0) {
+      const double own = (clear_balls_[v] - mesh_.points[v]).norm() - options_.ball_radius;
+      material[v] = gap_to_ball(clear_balls_, balls, mesh_.points[v], own);
+    }
+  }
+  return material;
 }
 
 void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& design) {
@@ -428,7 +478,9 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& 
     return lift;
   };
   for (auto& p : pass) {
-    summary_.lifted_points += lift_clear(p) > hollow ? 1 : 0;
+    if (const double lift = lift_clear(p); lift > hollow) {
+      lifted_.push_back({p.contact, lift});
+    }
   }
   // Where the pass turns sharply (over a hollow, round a boundary corner) the ball between
   // two clear points can still cut in: the cleared midpoint goes in between, recursively,
@@ -451,6 +503,9 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& 
     out.push_back(pass[i]);
   }
   pass = std::move(out);
+  for (const auto& p : pass) {
+    path_balls_.push_back(p.centre);
+  }
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
@@ -580,6 +635,14 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
         pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
   }
   summary_.gate = gate_.report();
+  summary_.lifted_points = static_cast<long>(lifted_.size());
+  // A point lifted along a normal that crosses a pocket rises far more than the material
+  // it leaves: what is left there is its gap to the nearest ball of the whole path.
+  const PointGrid balls(path_balls_, options_.ball_radius + longest_edge_);
+  for (auto& p : lifted_) {
+    p.lift_mm = gap_to_ball(path_balls_, balls, p.contact, p.lift_mm);
+  }
+  summary_.lifted_regions = lifted_regions(lifted_, options_.ball_radius);
   return {};
 }
 

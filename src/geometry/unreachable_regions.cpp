@@ -8,7 +8,8 @@
 namespace subfeed::geometry {
 
 std::vector<UnreachableRegion> unreachable_regions(const SurfaceMesh& mesh,
-                                                   const std::vector<char>& reachable) {
+                                                   const std::vector<char>& reachable,
+                                                   const std::vector<double>& material) {
   const auto blocked = [&](int v) { return reachable[static_cast<std::size_t>(v)] == 0; };
   VertexGroups groups(reachable.size());
   for (const auto& t : mesh.triangles) {
@@ -31,6 +32,7 @@ std::vector<UnreachableRegion> unreachable_regions(const SurfaceMesh& mesh,
     r.high = fresh ? p : r.high.cwiseMax(p);
     r.centroid += p;
     ++r.vertices;
+    r.material_mm = i < material.size() ? std::max(r.material_mm, material[i]) : r.material_mm;
   }
   std::vector<UnreachableRegion> out;
   for (auto& [root, r] : by_root) {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <thread>
 
@@ -107,6 +108,64 @@ TEST_CASE("plan shows its progress on a terminal and erases it before the summar
   const auto last = shown.rfind("planning ");
   REQUIRE(last != std::string::npos);
   CHECK(shown.find("\r\033[K", last) != std::string::npos); // erased after the last one
+}
+
+namespace {
+
+// z = a (x^2 + y^2) on a 9 x 9 cage 2 mm apart: 1/(2a) mm in radius at the bottom.
+std::string narrow_bowl_obj(double a) {
+  std::string obj;
+  for (int j = 0; j < 9; ++j) {
+    for (int i = 0; i < 9; ++i) {
+      const double x = 2.0 * (i - 4), y = 2.0 * (j - 4);
+      obj += fmt::format("v {} {} {}\n", x, y, a * (x * x + y * y) - 2.0 * a * 4.0 / 3.0);
+    }
+  }
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 8; ++i) {
+      const int v = 9 * j + i + 1;
+      obj += fmt::format("f {} {} {} {}\n", v, v + 1, v + 10, v + 9);
+    }
+  }
+  return obj;
+}
+
+} // namespace
+
+TEST_CASE("plan warns of material left only where it is thicker than the scallop", "[slow]") {
+  TempDir dir;
+  const auto cl = (dir.path() / "part.cl").string();
+  // The sample seat and bowl: every place is reached or keeps less than H: one line, "none".
+  for (const char* part : {"seat", "bowl"}) {
+    CAPTURE(part);
+    const auto plan = run_process({bin, "plan", source_dir + "/examples/" + part + ".obj", "--tool",
+                                   "ball:6", "--scallop", "0.03", "-o", cl});
+    REQUIRE(plan.exit_code == 0);
+    CHECK(plan.out.find("material left thicker than H (0.03 mm): none") != std::string::npos);
+    CHECK(plan.err.find("warning") == std::string::npos);
+  }
+  // Not a hollow, but lifted at the boundary corners: the path's own balls pass nearer than
+  // H there, so that is a note, not a warning.
+  const auto dome = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6",
+                                 "--scallop", "0.03", "-o", cl});
+  REQUIRE(dome.exit_code == 0);
+  CHECK(dome.out.find("CL points lifted clear of the part leave at most 0.0") != std::string::npos);
+  CHECK(dome.err.find("warning") == std::string::npos);
+  // z = r (x^2 + y^2) / 8 is 4 mm in radius at the bottom; a 5 mm ball rests on its walls
+  // (5 - 4)^2 / 8 = 0.125 mm above it; the lifted points there keep one mesh tolerance more.
+  const auto cage = dir.write("narrow.obj", narrow_bowl_obj(0.125)).string();
+  const auto plan = run_process({bin, "plan", cage, "--tool", "ball:10", "--scallop", "0.1",
+                                 "--tolerance", "0.005", "-o", cl});
+  REQUIRE(plan.exit_code == 0);
+  CHECK(plan.err.find("is left in 1 place(s) the ball cannot follow") != std::string::npos);
+  const auto at = plan.err.find("near (0.00, 0.00,");
+  REQUIRE(at != std::string::npos);
+  const auto up_to = plan.err.find("up to ", at);
+  REQUIRE(up_to != std::string::npos);
+  const double shown = std::stod(plan.err.substr(up_to + 6));
+  CHECK(shown >= 0.125 - 0.002);
+  CHECK(shown <= 0.125 + 0.005 + 0.01);
+  CHECK(plan.err.find("a hollow narrower than the ball") != std::string::npos);
 }
 
 TEST_CASE("plan refuses a bad tool, scallop, direction, stay-down or cage in one line") {

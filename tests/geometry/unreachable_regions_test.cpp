@@ -1,6 +1,7 @@
 // Where the ball cannot reach, located: connected groups of blocked vertices, and on a bowl
 // narrower than the ball, the one region at its bottom.
 
+#include "geometry/lifted_regions.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/toolpath_planner.hpp"
 #include "geometry/unreachable_regions.hpp"
@@ -86,4 +87,50 @@ TEST_CASE("a trough narrower than the ball along the passes is found too") {
   CHECK(r.high.x() == Approx(1.114).margin(0.1));
   CHECK(r.low.x() == Approx(-1.114).margin(0.1));
   CHECK(r.high.y() - r.low.y() > 10.0);
+}
+
+TEST_CASE("the material a bowl narrower than the ball keeps at its bottom, exactly") {
+  // z = a rho^2 has radius 1/(2a) at its bottom. A ball of radius r > 1/(2a) set on the axis
+  // touches the walls at rho^2 = r^2 - 1/(4a^2) and stays a (r - 1/(2a))^2 above the bottom:
+  // that is the material left there. (A cage sampling a quadratic has the same quadratic,
+  // raised by a constant, as its limit surface.)
+  struct Bowl {
+    double a, r;
+  };
+  for (const auto [a, r] : {Bowl{0.25, 3.0}, Bowl{0.5, 2.0}, Bowl{0.5, 3.0}, Bowl{1.0, 2.0}}) {
+    CAPTURE(a, r);
+    const auto cage = subfeed::testing::grid_cage(9, 2.0, a, a);
+    const auto surface = LimitSurface::build(cage);
+    REQUIRE(surface);
+    PlanOptions options;
+    options.ball_radius = r;
+    options.scallop = 0.01;
+    options.tolerance = 0.005;
+    const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
+    REQUIRE(planner);
+    const auto& s = planner->summary();
+    REQUIRE_FALSE(s.unreachable_regions.empty());
+    const double exact = a * (r - 0.5 / a) * (r - 0.5 / a);
+    CHECK(s.unreachable_regions.front().material_mm == Approx(exact).margin(0.01 * exact + 0.004));
+    CHECK(s.scallop == 0.01);
+  }
+}
+
+TEST_CASE("lifted CL points group by distance, thickest region first") {
+  std::vector<LiftedPoint> points;
+  for (int i = 0; i < 5; ++i) { // a row 0.5 mm apart: one region
+    points.push_back({Eigen::Vector3d(0.5 * i, 0.0, 0.0), 0.01 * (i + 1)});
+  }
+  points.push_back({Eigen::Vector3d(20.0, 0.0, 1.0), 0.2}); // far away: a region of its own
+  points.push_back({Eigen::Vector3d(20.4, 0.3, 1.0), 0.1});
+  const auto regions = lifted_regions(points, 1.0);
+  REQUIRE(regions.size() == 2);
+  CHECK(regions[0].points == 2);
+  CHECK(regions[0].max_lift_mm == 0.2);
+  CHECK(regions[0].centroid.isApprox(Eigen::Vector3d(20.2, 0.15, 1.0)));
+  CHECK(regions[1].points == 5);
+  CHECK(regions[1].max_lift_mm == Approx(0.05));
+  CHECK(regions[1].low.isApprox(Eigen::Vector3d(0.0, 0.0, 0.0)));
+  CHECK(regions[1].high.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
+  CHECK(lifted_regions({}, 1.0).empty());
 }

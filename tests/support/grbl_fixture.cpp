@@ -1,6 +1,7 @@
 #include "support/grbl_fixture.hpp"
 
 #include "drivers/gcode_source.hpp"
+#include "drivers/journal.hpp"
 #include "sim/pty.hpp"
 
 #include <cstring>
@@ -34,6 +35,19 @@ Expected<drivers::StreamSummary> GrblBench::stream(const std::string& program,
   const auto file = dir.write("job.nc", program);
   SUBFEED_TRY_ASSIGN(auto source, drivers::GcodeSource::open(file, {}));
   return drivers::stream_grbl(*port, source, options, inbox, observer);
+}
+
+Expected<drivers::StreamSummary>
+GrblBench::stream_journaled(const std::string& program, const std::filesystem::path& journal,
+                            const drivers::GrblStreamOptions& options) {
+  const auto file = dir.write("job.nc", program);
+  SUBFEED_TRY_ASSIGN(auto source, drivers::GcodeSource::open(file, {}));
+  SUBFEED_TRY_ASSIGN(auto log, drivers::Journal::open(journal));
+  drivers::JournaledObserver journaled(observer, log);
+  log.start("grbl", file.string(), port->name());
+  auto outcome = drivers::stream_grbl(*port, source, options, nullptr, journaled);
+  log.end(outcome);
+  return outcome;
 }
 
 std::vector<std::string> stripped_lines(const std::string& program) {

@@ -7,6 +7,7 @@
 #include "sim/grbl_sim.hpp"
 #include "support/temp_dir.hpp"
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ struct GrblBench {
   Expected<drivers::StreamSummary>
   stream(const std::string& program, const drivers::GrblStreamOptions& options = fast_options(),
          drivers::ControlInbox* inbox = nullptr);
+
+  // As stream(), every report also written to a real journal at `journal`.
+  Expected<drivers::StreamSummary>
+  stream_journaled(const std::string& program, const std::filesystem::path& journal,
+                   const drivers::GrblStreamOptions& options = fast_options());
 
   // Options with short timeouts so that failing tests fail fast.
   static drivers::GrblStreamOptions fast_options();

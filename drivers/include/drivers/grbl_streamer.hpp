@@ -5,12 +5,15 @@
 // Lines that write EEPROM, and every line with --send-and-wait, go alone. Realtime bytes
 // bypass the count. Every reply is mapped back to the file line it answers.
 //
-// Faults stop motion first and explain second: an `error:N` puts the machine in feed hold
-// at once, waits until it has stopped and resets it (unless errors are to be collected); an
-// ALARM or an unexpected reset (welcome banner) ends the stream at once; a lost link, a
-// controller that falls silent and a lost acknowledgement are reported with the last line
-// known acknowledged. A stop command (Ctrl-C) holds, waits for Hold:0, then resets, so the
-// controller raises no ALARM:3.
+// Faults stop motion first and explain second: no program line is written once a fault
+// reply has been read. An `error:N` or an unexpected reset (welcome banner) puts the
+// machine in feed hold at once, waits until it has stopped and resets it (unless errors are
+// to be collected); an ALARM ends the stream at once. The report, built once the
+// controller has answered what it will, lists the lines acknowledged and the lines sent but
+// not run (refused, or dropped unread by the reset). A lost link, a controller that falls
+// silent and a lost acknowledgement are reported with the last line known acknowledged. A
+// stop command (Ctrl-C) holds, waits for Hold:0, then resets, so the controller raises no
+// ALARM:3.
 
 #include "base/error.hpp"
 #include "drivers/control_inbox.hpp"

@@ -67,11 +67,18 @@ struct GrblSimStats {
   std::vector<std::string> executed; // accepted program lines, as received (stripped), in order
   long executed_count = 0;
   std::uint64_t executed_hash = delivery_hash_seed; // FNV-1a over executed lines and '\n'
-  long checked_lines = 0;                           // program lines answered in check mode ($C)
-  long program_lines = 0;                           // program lines received, accepted or not
-  long overrun_bytes = 0;                           // bytes dropped because the RX buffer was full
-  long eeprom_violations = 0;                       // EEPROM writes while more bytes were waiting
-  int max_rx_fill = 0;                              // most bytes ever waiting in the RX buffer
+  // Program lines received and not run, as received (stripped), in order; the texts only
+  // with record_executed. Refused: answered error:N. Dropped: emptied unread from the RX
+  // buffer by a reset, an alarm or an EEPROM write, or taken by a fault (brown-out, hang,
+  // lost link) before running; a line cut short at the buffer's end counts. Waiting: in the
+  // RX buffer now, unread (behind an alarm, or not yet reached).
+  std::vector<std::string> refused, dropped, waiting;
+  long refused_count = 0, dropped_count = 0, waiting_count = 0;
+  long checked_lines = 0;     // program lines answered in check mode ($C)
+  long program_lines = 0;     // program lines received, accepted or not
+  long overrun_bytes = 0;     // bytes dropped because the RX buffer was full
+  long eeprom_violations = 0; // EEPROM writes while more bytes were waiting
+  int max_rx_fill = 0;        // most bytes ever waiting in the RX buffer
   long errors_sent = 0;
   long alarms_sent = 0;
   long resets = 0;                        // soft resets received (0x18)

@@ -31,6 +31,7 @@
 #include "cl/cl_pose.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/feed_direction.hpp"
+#include "geometry/lifted_regions.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/motion_gate.hpp"
@@ -88,7 +89,9 @@ struct PlanOptions {
 };
 
 struct PlanSummary {
-  double direction_deg = 0.0;                   // the feed direction cut
+  double scallop = 0.0;       // H asked for, mm: material thinner than this is within it
+  double ball_radius = 0.0;   // mm
+  double direction_deg = 0.0; // the feed direction cut
   std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
   std::vector<Eigen::Vector3d> ring_centres;    // of concentric passes (one per piece), mm
   double ring_price = 0.0;     // predicted cutting of rings, mm, when set against the
@@ -106,14 +109,15 @@ struct PlanSummary {
   double worst_spacing_ratio = 0.0; // measured/needed of the planes, before insertion
   int inserted_depth = 0;           // passes inserted down to step / 2^depth
   long planes = 0;
-  long passes = 0;               // polylines cut
-  long points = 0;               // feed points written
-  long lifted_points = 0;        // CL points lifted clear of hollows narrower than the ball
-  double cut_length = 0.0;       // mm of feed moves along passes
-  double link_length = 0.0;      // mm of retracts, rapids and plunges
-  long stay_down_links = 0;      // links made by feed along the surface
-  double stay_down_length = 0.0; // mm of them (counted in cut_length)
-  GateReport gate;               // what the motion gate checked, once run() has finished
+  long passes = 0;                          // polylines cut
+  long points = 0;                          // feed points written
+  long lifted_points = 0;                   // CL points lifted clear of the part, leaving material
+  std::vector<LiftedRegion> lifted_regions; // where, thickest first (once run() has finished)
+  double cut_length = 0.0;                  // mm of feed moves along passes
+  double link_length = 0.0;                 // mm of retracts, rapids and plunges
+  long stay_down_links = 0;                 // links made by feed along the surface
+  double stay_down_length = 0.0;            // mm of them (counted in cut_length)
+  GateReport gate;                          // what the motion gate checked, once run() has finished
 
   [[nodiscard]] bool rings() const { return !ring_centres.empty(); } // concentric passes cut
 };
@@ -146,11 +150,26 @@ private:
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>> cut_level(MeshSlicer& slicer, double level,
                                                               int depth, const PointGrid& design);
+  // Calls visit(centre - nearest point) for each design triangle near enough to reach
+  // inside a ball at `at` (some more than once).
+  template <class Visit>
+  void for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at, Visit&& visit) const;
   // How far the ball centre must move along `dir` until no triangle of the design mesh
   // reaches inside the ball, mm.
   [[nodiscard]] double clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
                                       const Eigen::Vector3d& dir) const;
   void clear_pass(std::vector<PassPoint>& pass, const PointGrid& design);
+  // A ball set on each design vertex along its normal and lifted clear of the part: the
+  // places a ball can be, against which what a hollow keeps is measured.
+  void set_clear_balls();
+  // The gap between p and the nearest ball centred on `centres` (gridded in `balls`), or
+  // `bound` where none is nearer, mm.
+  [[nodiscard]] double gap_to_ball(const std::vector<Eigen::Vector3d>& centres,
+                                   const PointGrid& balls, const Eigen::Vector3d& p,
+                                   double bound) const;
+  // For each vertex the ball cannot reach, how much material it leaves there: its gap to
+  // the nearest clear ball (0 where reachable), mm.
+  [[nodiscard]] std::vector<double> material_left(const std::vector<char>& reachable) const;
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
@@ -173,6 +192,9 @@ private:
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
   VertexTriangles around_;    // triangles around each vertex
   double longest_edge_ = 0.0; // of the design mesh, mm
+  std::vector<LiftedPoint> lifted_;
+  std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm
+  std::vector<Eigen::Vector3d> path_balls_;  // the ball centres of every cleared pass, mm
   Deformation deformation_;
   double chord_tolerance_ = 0.0;
   double safe_z_ = 0.0;

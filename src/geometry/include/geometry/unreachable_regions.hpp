@@ -16,10 +16,13 @@ struct UnreachableRegion {
   Eigen::Vector3d low = Eigen::Vector3d::Zero();      // bounding box, mm
   Eigen::Vector3d high = Eigen::Vector3d::Zero();
   long vertices = 0;
+  double material_mm = 0.0; // the most material the ball leaves there, at its deepest vertex
 };
 
-// `reachable[i]` is 0 where vertex i cannot be reached. Largest region first.
+// `reachable[i]` is 0 where vertex i cannot be reached; `material[i]`, when given, how much
+// the ball leaves on it. Largest region first.
 [[nodiscard]] std::vector<UnreachableRegion>
-unreachable_regions(const SurfaceMesh& mesh, const std::vector<char>& reachable);
+unreachable_regions(const SurfaceMesh& mesh, const std::vector<char>& reachable,
+                    const std::vector<double>& material = {});
 
 } // namespace subfeed::geometry
