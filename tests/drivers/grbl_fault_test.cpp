@@ -5,6 +5,7 @@
 // handles a whole batch of answers before looking at the fault would send more.
 
 #include "support/grbl_fixture.hpp"
+#include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -16,6 +17,7 @@
 using subfeed::ErrorCode;
 using subfeed::sim::GrblSimOptions;
 using subfeed::testing::GrblBench;
+using subfeed::testing::lines_of;
 using subfeed::testing::stripped_lines;
 
 namespace {
@@ -28,15 +30,6 @@ std::string busy_program(int moves) {
     p += "G1X" + std::to_string(i % 2 == 0 ? 0 : 20) + "Y" + std::to_string(i) + "\n";
   }
   return p;
-}
-
-std::vector<std::string> read_lines(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) {
-    lines.push_back(line);
-  }
-  return lines;
 }
 
 // "lines 41-43, 47" (or "line 41") back to numbers.
@@ -96,7 +89,7 @@ TEST_CASE("not one line is sent after a fault is read, and what did not run is t
   CHECK(stats.overrun_bytes == 0);
 
   // The journal: the first fault reply, then no `sent`.
-  const auto journal = read_lines(journal_path);
+  const auto journal = lines_of(journal_path);
   const std::regex fault_reply(R"(^\d+ (answered line=\d+ error:\d+|event alarm|event reset))");
   const auto first_fault = std::ranges::find_if(
       journal, [&](const std::string& l) { return std::regex_search(l, fault_reply); });
