@@ -164,15 +164,18 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   return planner;
 }
 
-// Triangles around each vertex (for the clearance check), centroids and area normals (for the
-// tool axis) and the longest edge (how far a vertex search must reach).
+// Centroids and reaches (for the clearance check), area normals (for the tool axis) and the
+// longest edge (how far a vertex search must reach).
 void ToolpathPlanner::index_triangles() {
-  around_ = vertex_triangles(mesh_.triangles, static_cast<std::size_t>(mesh_.vertex_count()));
   for (const auto& t : mesh_.triangles) {
     const auto& p0 = mesh_.points[static_cast<std::size_t>(t[0])];
     const auto& p1 = mesh_.points[static_cast<std::size_t>(t[1])];
     const auto& p2 = mesh_.points[static_cast<std::size_t>(t[2])];
     centroids_.push_back((p0 + p1 + p2) / 3.0);
+    const auto& c = centroids_.back();
+    reach_.push_back(std::sqrt(
+        std::max({(p0 - c).squaredNorm(), (p1 - c).squaredNorm(), (p2 - c).squaredNorm()})));
+    widest_reach_ = std::max(widest_reach_, reach_.back());
     area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
     longest_edge_ = std::max({longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
   }
@@ -385,19 +388,26 @@ Expected<void> ToolpathPlanner::emit_nearest_first(std::vector<std::vector<PassP
   return {};
 }
 
+PointGrid ToolpathPlanner::design_grid() const {
+  return {centroids_, options_.ball_radius + widest_reach_};
+}
+
 template <class Visit>
 void ToolpathPlanner::for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at,
                                          Visit&& visit) const {
-  // A triangle inside the ball has a vertex within r plus its longest edge of the centre.
-  design.within(at, options_.ball_radius + longest_edge_, [&](int v) {
-    const auto u = static_cast<std::size_t>(v);
-    for (int k = around_.start[u]; k < around_.start[u + 1]; ++k) {
-      const auto& t =
-          mesh_.triangles[static_cast<std::size_t>(around_.triangles[static_cast<std::size_t>(k)])];
-      visit(at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
-                                     mesh_.points[static_cast<std::size_t>(t[1])],
-                                     mesh_.points[static_cast<std::size_t>(t[2])]));
+  // Every point of a triangle lies within its reach of its centroid, so one whose centroid is
+  // farther than the ball's radius plus that reach cannot touch the ball: each triangle is
+  // found once, and only those near enough are measured.
+  const double r = options_.ball_radius;
+  design.within(at, r + widest_reach_, [&](int i) {
+    const auto u = static_cast<std::size_t>(i);
+    if ((at - centroids_[u]).norm() > r + reach_[u]) {
+      return;
     }
+    const auto& t = mesh_.triangles[u];
+    visit(at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
+                                   mesh_.points[static_cast<std::size_t>(t[1])],
+                                   mesh_.points[static_cast<std::size_t>(t[2])]));
   });
 }
 
@@ -426,7 +436,7 @@ double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vec
 
 void ToolpathPlanner::set_clear_balls() {
   const double r = options_.ball_radius;
-  const PointGrid design(mesh_.points, r + longest_edge_);
+  const PointGrid design = design_grid();
   clear_balls_.resize(mesh_.points.size());
   for (std::size_t v = 0; v < clear_balls_.size(); ++v) {
     const Eigen::Vector3d& n = mesh_.normals[v];
@@ -583,7 +593,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;
   const long per_plane = 1L << max_insertion_depth;
-  const PointGrid design(mesh_.points, options_.ball_radius + longest_edge_);
+  const PointGrid design = design_grid();
   const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
   long cut_levels = 0;
   // Between rings, inserted passes are short pieces spread round the part (behind each

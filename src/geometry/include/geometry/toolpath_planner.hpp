@@ -40,7 +40,6 @@
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/unreachable_regions.hpp"
-#include "geometry/vertex_triangles.hpp"
 
 #include <functional>
 #include <optional>
@@ -150,8 +149,10 @@ private:
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>> cut_level(MeshSlicer& slicer, double level,
                                                               int depth, const PointGrid& design);
-  // Calls visit(centre - nearest point) for each design triangle near enough to reach
-  // inside a ball at `at` (some more than once).
+  // The design triangles gridded by centroid, for for_near_triangles.
+  [[nodiscard]] PointGrid design_grid() const;
+  // Calls visit(centre - nearest point) once for each design triangle whose bounding sphere
+  // reaches inside a ball at `at` (`design` from design_grid()).
   template <class Visit>
   void for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at, Visit&& visit) const;
   // How far the ball centre must move along `dir` until no triangle of the design mesh
@@ -190,7 +191,8 @@ private:
   Eigen::Vector3d s_, feed_dir_;
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
-  VertexTriangles around_;    // triangles around each vertex
+  std::vector<double> reach_; // each triangle's farthest vertex from its centroid, mm
+  double widest_reach_ = 0.0; // the largest of reach_, mm
   double longest_edge_ = 0.0; // of the design mesh, mm
   std::vector<LiftedPoint> lifted_;
   std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm
