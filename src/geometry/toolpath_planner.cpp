@@ -175,7 +175,6 @@ void ToolpathPlanner::index_triangles() {
     const auto& c = centroids_.back();
     reach_.push_back(std::sqrt(
         std::max({(p0 - c).squaredNorm(), (p1 - c).squaredNorm(), (p2 - c).squaredNorm()})));
-    widest_reach_ = std::max(widest_reach_, reach_.back());
     area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
     longest_edge_ = std::max({longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
   }
@@ -252,7 +251,7 @@ Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
 
 std::optional<std::vector<cl::ClPose>>
 ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
-                                const PointGrid& design) const {
+                                const TriangleTree& design) const {
   const Eigen::Vector3d e = tip_of(end), s = tip_of(start);
   const Eigen::Vector3d ae = axis_of(end), as = axis_of(start);
   const double length = (s - e).norm();
@@ -299,7 +298,7 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
 }
 
 Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sink,
-                                        const PointGrid& design) {
+                                        const TriangleTree& design) {
   if (last_ && stay_down_ > 0.0 && (tip_of(start) - tip_of(*last_)).norm() <= stay_down_) {
     if (const auto poses = stay_down_link(*last_, start, design)) {
       const double before = summary_.cut_length;
@@ -338,7 +337,7 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
 }
 
 Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
-                                          const PointGrid& design) {
+                                          const TriangleTree& design) {
   const auto kept = reduce(pass);
   const auto pose = [&](std::size_t i) {
     const auto& p = pass[kept[i]];
@@ -355,7 +354,7 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
 }
 
 Expected<void> ToolpathPlanner::emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
-                                                   const Sink& sink, const PointGrid& design) {
+                                                   const Sink& sink, const TriangleTree& design) {
   std::vector<char> done(passes.size(), 0);
   for (std::size_t n = 0; n < passes.size(); ++n) {
     const Eigen::Vector3d from = last_ ? tip_of(*last_) : passes.front().front().contact;
@@ -388,30 +387,31 @@ Expected<void> ToolpathPlanner::emit_nearest_first(std::vector<std::vector<PassP
   return {};
 }
 
-PointGrid ToolpathPlanner::design_grid() const {
-  return {centroids_, options_.ball_radius + widest_reach_};
+TriangleTree ToolpathPlanner::design_tree() const {
+  return {mesh_.points, mesh_.triangles};
 }
 
 template <class Visit>
-void ToolpathPlanner::for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at,
+void ToolpathPlanner::for_near_triangles(const TriangleTree& design, const Eigen::Vector3d& at,
                                          Visit&& visit) const {
-  // Every point of a triangle lies within its reach of its centroid, so one whose centroid is
-  // farther than the ball's radius plus that reach cannot touch the ball: each triangle is
-  // found once, and only those near enough are measured.
+  // The tree yields each triangle whose box reaches the ball once. Every point of a triangle
+  // lies within its reach of its centroid, so one whose centroid is farther than the ball's
+  // radius plus that reach cannot touch the ball and is not measured.
   const double r = options_.ball_radius;
-  design.within(at, r + widest_reach_, [&](int i) {
+  for (const int i : design.near(at, r)) {
     const auto u = static_cast<std::size_t>(i);
-    if ((at - centroids_[u]).norm() > r + reach_[u]) {
-      return;
+    const double near = r + reach_[u];
+    if ((at - centroids_[u]).squaredNorm() > near * near) {
+      continue;
     }
     const auto& t = mesh_.triangles[u];
     visit(at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
                                    mesh_.points[static_cast<std::size_t>(t[1])],
                                    mesh_.points[static_cast<std::size_t>(t[2])]));
-  });
+  }
 }
 
-double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
+double ToolpathPlanner::clearance_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
                                        const Eigen::Vector3d& dir) const {
   const double r = options_.ball_radius;
   double total = 0.0;
@@ -436,7 +436,7 @@ double ToolpathPlanner::clearance_lift(const PointGrid& design, const Eigen::Vec
 
 void ToolpathPlanner::set_clear_balls() {
   const double r = options_.ball_radius;
-  const PointGrid design = design_grid();
+  const TriangleTree design = design_tree();
   clear_balls_.resize(mesh_.points.size());
   for (std::size_t v = 0; v < clear_balls_.size(); ++v) {
     const Eigen::Vector3d& n = mesh_.normals[v];
@@ -476,7 +476,7 @@ std::vector<double> ToolpathPlanner::material_left(const std::vector<char>& reac
   return material;
 }
 
-void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& design) {
+void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design) {
   // Over a hollow the lift goes one mesh tolerance further, as the true surface may lie
   // that much nearer the ball than its triangles. Elsewhere a lift is only the rounding of
   // a point interpolated on a mesh edge.
@@ -519,7 +519,7 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const PointGrid& 
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::boundary_passes(const PointGrid& design) {
+ToolpathPlanner::boundary_passes(const TriangleTree& design) {
   // Edges of one triangle only, in that triangle's winding, chained end to start.
   const auto edges = mesh_edges(mesh_.triangles);
   std::unordered_map<int, int> next;
@@ -557,7 +557,8 @@ ToolpathPlanner::boundary_passes(const PointGrid& design) {
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth, const PointGrid& design) {
+ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth,
+                           const TriangleTree& design) {
   const auto& inserted = deformation_.insertion.depth;
   auto lines = slicer.slice(level, inserted.empty() ? nullptr : &inserted, depth);
   std::vector<std::vector<PassPoint>> passes;
@@ -593,7 +594,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;
   const long per_plane = 1L << max_insertion_depth;
-  const PointGrid design = design_grid();
+  const TriangleTree design = design_tree();
   const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
   long cut_levels = 0;
   // Between rings, inserted passes are short pieces spread round the part (behind each

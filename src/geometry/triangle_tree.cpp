@@ -170,4 +170,30 @@ std::optional<MeshNearest> TriangleTree::nearest(const Eigen::Vector3d& p, const
   return best;
 }
 
+std::vector<int> TriangleTree::near(const Eigen::Vector3d& p, double radius) const {
+  std::vector<int> found;
+  if (nodes_.empty()) {
+    return found;
+  }
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const auto& node = nodes_[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    if (box_lower_bound(p, p, node.low, node.high) > radius ||
+        cylinder_lower_bound(p, p, node.centre, node.normal, node.radius, node.half_height) >
+            radius) {
+      continue;
+    }
+    if (node.left < 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        found.push_back(order_[static_cast<std::size_t>(i)]);
+      }
+      continue;
+    }
+    stack.push_back(node.left);
+    stack.push_back(node.right);
+  }
+  return found;
+}
+
 } // namespace subfeed::geometry

@@ -39,6 +39,7 @@
 #include "geometry/pass_intervals.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
+#include "geometry/triangle_tree.hpp"
 #include "geometry/unreachable_regions.hpp"
 
 #include <functional>
@@ -146,20 +147,21 @@ private:
   };
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate);
   void index_triangles();
-  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const PointGrid& design);
-  [[nodiscard]] std::vector<std::vector<PassPoint>> cut_level(MeshSlicer& slicer, double level,
-                                                              int depth, const PointGrid& design);
-  // The design triangles gridded by centroid, for for_near_triangles.
-  [[nodiscard]] PointGrid design_grid() const;
+  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const TriangleTree& design);
+  [[nodiscard]] std::vector<std::vector<PassPoint>>
+  cut_level(MeshSlicer& slicer, double level, int depth, const TriangleTree& design);
+  // The design mesh's triangle tree, for for_near_triangles.
+  [[nodiscard]] TriangleTree design_tree() const;
   // Calls visit(centre - nearest point) once for each design triangle whose bounding sphere
-  // reaches inside a ball at `at` (`design` from design_grid()).
+  // reaches inside a ball at `at` (`design` from design_tree()).
   template <class Visit>
-  void for_near_triangles(const PointGrid& design, const Eigen::Vector3d& at, Visit&& visit) const;
+  void for_near_triangles(const TriangleTree& design, const Eigen::Vector3d& at,
+                          Visit&& visit) const;
   // How far the ball centre must move along `dir` until no triangle of the design mesh
   // reaches inside the ball, mm.
-  [[nodiscard]] double clearance_lift(const PointGrid& design, const Eigen::Vector3d& centre,
+  [[nodiscard]] double clearance_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
                                       const Eigen::Vector3d& dir) const;
-  void clear_pass(std::vector<PassPoint>& pass, const PointGrid& design);
+  void clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design);
   // A ball set on each design vertex along its normal and lifted clear of the part: the
   // places a ball can be, against which what a hollow keeps is measured.
   void set_clear_balls();
@@ -174,16 +176,16 @@ private:
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
-                                         const PointGrid& design);
+                                         const TriangleTree& design);
   // Each pass in turn the one that starts (or, zig-zag, ends) nearest the tool.
   [[nodiscard]] Expected<void> emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
-                                                  const Sink& sink, const PointGrid& design);
+                                                  const Sink& sink, const TriangleTree& design);
   [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink,
-                                       const PointGrid& design);
+                                       const TriangleTree& design);
   // The feed poses between `end` and `start` (both excluded) of a link that stays down, or
   // none where the ball would have to rise more than the link is long.
   [[nodiscard]] std::optional<std::vector<cl::ClPose>>
-  stay_down_link(const cl::ClPose& end, const cl::ClPose& start, const PointGrid& design) const;
+  stay_down_link(const cl::ClPose& end, const cl::ClPose& start, const TriangleTree& design) const;
   [[nodiscard]] Expected<void> put(const cl::ClPose& pose, const Sink& sink);
 
   PlanOptions options_;
@@ -192,7 +194,6 @@ private:
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
   std::vector<double> reach_; // each triangle's farthest vertex from its centroid, mm
-  double widest_reach_ = 0.0; // the largest of reach_, mm
   double longest_edge_ = 0.0; // of the design mesh, mm
   std::vector<LiftedPoint> lifted_;
   std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm

@@ -1,8 +1,8 @@
 #pragma once
 // A bounding-box tree over a triangle mesh for "the nearest point of the mesh to this
-// segment" queries. Exact: a subtree is skipped only when its box is provably farther than
-// the best found (or than the caller's limit), and every triangle left is measured by
-// closest_segment_triangle. The caller keeps the points and triangles alive.
+// segment" and "the triangles near this point" queries. Exact: a subtree is skipped only when its
+// box is provably farther than the best found (or than the caller's limit), and every triangle left
+// is measured by closest_segment_triangle. The caller keeps the points and triangles alive.
 
 #include <Eigen/Core>
 #include <array>
@@ -26,6 +26,10 @@ public:
   // The nearest mesh point to segment pq if it lies closer than `limit`, else nothing.
   [[nodiscard]] std::optional<MeshNearest> nearest(const Eigen::Vector3d& p,
                                                    const Eigen::Vector3d& q, double limit) const;
+
+  // Each triangle that may lie within `radius` of p, once: every one that does, and a few
+  // near ones that do not (pruned by boxes and cylinders, not measured).
+  [[nodiscard]] std::vector<int> near(const Eigen::Vector3d& p, double radius) const;
 
 private:
   struct Node {
