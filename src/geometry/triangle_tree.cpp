@@ -46,6 +46,21 @@ double cylinder_lower_bound(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
   return std::sqrt(up * up + out * out);
 }
 
+// The same two bounds for a point, squared: the segment's least-distance search drops out.
+double box_point_bound2(const Eigen::Vector3d& p, const Eigen::Vector3d& low,
+                        const Eigen::Vector3d& high) {
+  return (low - p).cwiseMax(p - high).cwiseMax(0.0).squaredNorm();
+}
+
+double cylinder_point_bound2(const Eigen::Vector3d& p, const Eigen::Vector3d& centre,
+                             const Eigen::Vector3d& normal, double radius, double half_height) {
+  const Eigen::Vector3d d = p - centre;
+  const double h = normal.dot(d);
+  const double up = std::max(0.0, std::abs(h) - half_height);
+  const double out = std::max(0.0, (d - h * normal).norm() - radius);
+  return up * up + out * out;
+}
+
 } // namespace
 
 void TriangleTree::fit_cylinder(Node& leaf) const {
@@ -175,13 +190,14 @@ std::vector<int> TriangleTree::near(const Eigen::Vector3d& p, double radius) con
   if (nodes_.empty()) {
     return found;
   }
+  const double radius2 = radius * radius;
   std::vector<int> stack{0};
   while (!stack.empty()) {
     const auto& node = nodes_[static_cast<std::size_t>(stack.back())];
     stack.pop_back();
-    if (box_lower_bound(p, p, node.low, node.high) > radius ||
-        cylinder_lower_bound(p, p, node.centre, node.normal, node.radius, node.half_height) >
-            radius) {
+    if (box_point_bound2(p, node.low, node.high) > radius2 ||
+        cylinder_point_bound2(p, node.centre, node.normal, node.radius, node.half_height) >
+            radius2) {
       continue;
     }
     if (node.left < 0) {
