@@ -1,6 +1,6 @@
 #include "drivers/fanuc_streamer.hpp"
 
-#include "drivers/fanuc_modal_state.hpp"
+#include "gcode/modal_state.hpp"
 
 #include <cstdio>
 #include <poll.h>
@@ -65,7 +65,7 @@ public:
 
 private:
   Expected<void> send_program() {
-    FanucModalState modal;
+    gcode::ModalState modal;
     bool restored = !options_.from_line;
     FanucBlock block;
     while (true) {
@@ -83,7 +83,7 @@ private:
   }
 
   // Blocks before --from only build up the modal state; '%' and the O line still go.
-  Expected<void> send_or_apply(const FanucBlock& block, FanucModalState& modal, bool& restored) {
+  Expected<void> send_or_apply(const FanucBlock& block, gcode::ModalState& modal, bool& restored) {
     const char first = block.text.front();
     const bool framing = block.text == "%" || first == 'O' || first == ':';
     if (!restored && block.line >= *options_.from_line && !framing) {
@@ -101,8 +101,7 @@ private:
     if (restored || framing) {
       return send_block(block.text, block.line);
     }
-    modal.apply(block.text);
-    return {};
+    return modal.apply(block.text, {program_.name(), static_cast<int>(block.line), {}});
   }
 
   Expected<void> send_block(const std::string& text, long line) {

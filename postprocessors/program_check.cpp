@@ -2,7 +2,7 @@
 
 #include "angles.hpp"
 #include "cl/cl_reader.hpp"
-#include "gcode_words.hpp"
+#include "gcode/words.hpp"
 #include "post/kinematics.hpp"
 #include "post/post_file.hpp"
 #include "vector_math.hpp"
@@ -63,7 +63,7 @@ public:
     if (trimmed.empty() || trimmed.front() == 'O' || trimmed == "%") {
       return {};
     }
-    SUBFEED_TRY_ASSIGN(const auto words, split_words(text));
+    SUBFEED_TRY_ASSIGN(const auto words, gcode::split_words(text));
     Target target;
     SUBFEED_TRY(apply(words, target));
     if (!target.moves) {
@@ -127,7 +127,7 @@ private:
     return error(message.str());
   }
 
-  Expected<void> apply(const std::vector<GcodeWord>& words, Target& target) {
+  Expected<void> apply(const std::vector<gcode::Word>& words, Target& target) {
     for (const auto& w : words) {
       const auto axis = axis_letters.find(w.letter);
       if (w.letter == 'G') {

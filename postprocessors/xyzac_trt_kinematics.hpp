@@ -5,14 +5,13 @@
 // Sign convention. With p = a_direction, q = c_direction (each +1 or -1), Q = P - pivot
 // and D = (0, Dy, Dz + tool length):
 //   machine point  J = Rx(-p A) (Rz(-q C) Q - D) + D + pivot
-// which for p = q = s is PROTOCOLS.md's joint formula written as rotations. +1 is the
+// which for p = q = s is docs/PROTOCOLS.md's joint formula written as rotations. +1 is the
 // standard (ISO 841) table convention: positive A and C move the tool relative to the work
 // by the right-hand rule, so the table itself turns the other way; -1 is LinuxCNC's default.
 // The tool axis in the work frame is the fixed spindle direction carried back:
 //   K = Rz(q C) Rx(p A) (0, 0, 1) = (p q sin A sin C, -p sin A cos C, cos A)
 // so A = acos(Kz) and C = atan2(p q Kx, -p Ky); the second solution is (-A, C + 180 deg).
-// (PROTOCOLS.md's C = atan2(Kx, Ky) holds for p = q = -1 only.) At Kz = +-1 C is free: it
-// keeps its current value.
+// At Kz = +-1 C is free: it keeps its current value.
 
 #include "post/kinematics.hpp"
 

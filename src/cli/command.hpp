@@ -4,7 +4,7 @@
 // return an Error for main to print as one line and turn into the exit code.
 
 #include "base/error.hpp"
-#include "logger.hpp"
+#include "job/logger.hpp"
 
 #include <functional>
 
@@ -13,6 +13,10 @@ class App;
 }
 
 namespace subfeed::cli {
+
+// The front reports through the job library's Logger.
+using job::Logger;
+using job::Verbosity;
 
 using Action = std::function<Expected<void>(Logger&)>;
 

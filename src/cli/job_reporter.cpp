@@ -8,6 +8,8 @@
 
 namespace subfeed::cli {
 
+using namespace subfeed::job; // NOLINT: the front wires the job library
+
 JobReporter::JobReporter(Logger& log, bool json, JobPipeline& job, bool acks, double speed)
     : inner_(log, json), job_(job), json_(json),
       terminal_(!json && log.verbosity() != Verbosity::quiet && ::isatty(STDERR_FILENO) != 0),

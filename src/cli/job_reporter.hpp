@@ -6,7 +6,7 @@
 // StreamReporter that `send` uses. Also notes when the first block left and when the first
 // cutting block left, for the time-to-first-block figure.
 
-#include "job_pipeline.hpp"
+#include "job/job_pipeline.hpp"
 #include "stream_reporter.hpp"
 
 #include <chrono>
@@ -18,7 +18,7 @@ class JobReporter final : public drivers::StreamObserver {
 public:
   // `acks`: the controller acknowledges lines (GRBL); without, a block counts once sent.
   // `speed`: the simulated machine runs this many times faster than real time.
-  JobReporter(Logger& log, bool json, JobPipeline& job, bool acks, double speed);
+  JobReporter(Logger& log, bool json, job::JobPipeline& job, bool acks, double speed);
 
   void connected(const drivers::ControllerInfo& info) override { inner_.connected(info); }
   void progress(const drivers::StreamProgress& progress) override;
@@ -42,7 +42,7 @@ private:
   void end_line();
 
   StreamReporter inner_;
-  JobPipeline& job_;
+  job::JobPipeline& job_;
   bool json_, terminal_, acks_;
   bool shown_ = false; // a progress line is on the terminal
   double speed_;

@@ -3,7 +3,7 @@
 // input, 3 machine or link fault, 4 stopped by user). The only place that may throw.
 
 #include "command.hpp"
-#include "logger.hpp"
+#include "job/logger.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

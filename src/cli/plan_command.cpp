@@ -10,6 +10,7 @@
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
 #include "geometry/toolpath_planner.hpp"
+#include "job/plan_refusal.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -17,11 +18,13 @@
 
 namespace subfeed::cli {
 
+using namespace subfeed::job; // NOLINT: the front wires the job library
+
 namespace {
 
 struct PlanCommandOptions {
   std::string cage;
-  PlanFlags plan;
+  PlanSettings plan;
   std::string output;
 };
 

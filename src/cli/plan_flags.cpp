@@ -1,70 +1,12 @@
 #include "plan_flags.hpp"
 
-#include "base/number_text.hpp"
-
-#include "tool_spec.hpp"
-
 #include <CLI/CLI.hpp>
 
 namespace subfeed::cli {
 
-namespace {
+using namespace subfeed::job; // NOLINT: the front wires the job library
 
-Expected<double> direction_deg(const std::string& text) {
-  if (text == "x") {
-    return 0.0;
-  }
-  if (text == "y") {
-    return 90.0;
-  }
-  if (const auto a = parse_double(text)) {
-    return *a;
-  }
-  return fail(ErrorCode::usage,
-              "'" + text + "': expected x, y, auto, concentric or an angle in degrees",
-              {{}, 0, "--direction"});
-}
-
-} // namespace
-
-Expected<geometry::PlanOptions> plan_options_from(const PlanFlags& o) {
-  SUBFEED_TRY_ASSIGN(const double radius, parse_ball_tool(o.tool));
-  if (o.scallop <= 0.0 || o.scallop >= radius) {
-    return fail(ErrorCode::usage, "must be more than 0 and less than the ball radius",
-                {{}, 0, "--scallop"});
-  }
-  geometry::PlanOptions options;
-  options.ball_radius = radius;
-  options.scallop = o.scallop;
-  options.choose_direction = o.direction == "auto";
-  if (o.direction == "concentric") {
-    options.pattern = geometry::PassPattern::concentric;
-  } else if (!options.choose_direction) {
-    SUBFEED_TRY_ASSIGN(options.direction_deg, direction_deg(o.direction));
-  }
-  options.baseline = o.baseline;
-  if (o.axis_radius > 0.0) {
-    options.axis_radius = o.axis_radius;
-  }
-  options.fixed_axis = o.axis == "fixed";
-  options.zigzag = !o.one_way;
-  options.feed = o.feed;
-  options.plunge_feed = o.plunge_feed;
-  options.clearance = o.clearance;
-  if (o.stay_down >= 0.0) {
-    options.stay_down = o.stay_down;
-  }
-  options.refine_iterations = o.refine;
-  if (o.gate_tolerance > 0.0) {
-    options.gate_tolerance = o.gate_tolerance;
-  }
-  if (o.tolerance > 0.0) {
-    options.tolerance = o.tolerance;
-  }
-  return options;
-}
-
-void add_plan_flags(CLI::App& cmd, PlanFlags& o, bool required) {
+void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
   cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required(required);
   cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required(required);
   cmd.add_option(

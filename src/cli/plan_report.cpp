@@ -133,14 +133,4 @@ std::string gate_summary(const geometry::GateReport& gate) {
                      gate.moves, gate.rapids, gate.chord * 1000.0, gate.tolerance * 1000.0);
 }
 
-Error at_refused_pose(Error error, const geometry::ToolpathPlanner& planner,
-                      const cl::ClWriter& writer, const std::filesystem::path& cl) {
-  if (const auto& pose = planner.rejected()) {
-    error.where.file = cl.string();
-    error.where.line = static_cast<int>(writer.line_of(*pose));
-    error.message += "; nothing written";
-  }
-  return error;
-}
-
 } // namespace subfeed::cli

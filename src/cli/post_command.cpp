@@ -1,7 +1,7 @@
 // `subfeed post PART.cl --machine M.toml [--dialect grbl|fanuc|linuxcnc] -o PART.nc`: CL
 // data to G-code for one machine (postprocessors/post_file.hpp).
 
-#include "cl_gate.hpp"
+#include "job/cl_gate.hpp"
 #include "command.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
@@ -17,6 +17,8 @@
 #include <map>
 
 namespace subfeed::cli {
+
+using namespace subfeed::job; // NOLINT: the front wires the job library
 
 namespace {
 

@@ -5,15 +5,16 @@
 // block sent and answered, and the job's own arguments so that `resume` can rebuild it.
 
 #include "command.hpp"
-#include "control_thread.hpp"
-#include "controller_link.hpp"
-#include "dry_run.hpp"
-#include "job_pipeline.hpp"
+#include "job/control_thread.hpp"
+#include "job/job_stream.hpp"
+#include "job/controller_link.hpp"
+#include "job/dry_run.hpp"
+#include "job/job_pipeline.hpp"
 #include "job_reporter.hpp"
 #include "option_checks.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
-#include "run_job.hpp"
+#include "job/job_record.hpp"
 
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/grbl_streamer.hpp"
@@ -26,32 +27,26 @@
 
 namespace subfeed::cli {
 
+using namespace subfeed::job; // NOLINT: the front wires the job library
+
 namespace {
 
-Expected<drivers::StreamSummary> stream(const RunOptions& o, int sim_baud,
-                                        const post::MachineConfig& machine, Link& link,
-                                        JobPipeline& job, drivers::ControlInbox& inbox,
-                                        drivers::StreamObserver& observer) {
-  const std::string name = job_files(o).nc.string();
-  if (machine.controller.protocol == post::Protocol::fanuc) {
-    if (!o.tcp.empty()) {
-      return fail(ErrorCode::usage, "fanuc drip feed runs over a serial port, not --tcp",
-                  {{}, 0, "--tcp"});
-    }
-    drivers::LiveBlocks program(name, job.program());
-    drivers::FanucStreamOptions dnc;
-    dnc.serial = serial_options_for(machine);
-    if (o.sim && sim_baud > 0) {
-      dnc.serial.baud = sim_baud; // the sender paces itself at the simulated wire's speed
-    }
-    dnc.program_number = machine.controller.program_number;
-    return drivers::stream_fanuc(*link.transport, program, dnc, &inbox, observer);
-  }
-  drivers::LiveGcode program(name, job.program());
-  drivers::GrblStreamOptions grbl;
-  grbl.line_limit = machine.controller.line_length;
-  grbl.rx_buffer = machine.controller.rx_buffer;
-  return drivers::stream_grbl(*link.transport, program, grbl, &inbox, observer);
+void add_run_flags(CLI::App& cmd, job::JobRecord& o) {
+  add_plan_flags(cmd, o.plan, false);
+  cmd.add_option("--machine", o.machine, "Machine config: kinematics, limits, controller")
+      ->required()
+      ->type_name("M.toml");
+  cmd.add_option("-o,--output", o.output,
+                 "BASE of the files written: BASE.cl, BASE.nc, BASE.nc.map, BASE.journal "
+                 "(default: the cage's path without .obj)");
+  cmd.add_option("--journal", o.journal, "Append the job's journal to FILE (default BASE.journal)")
+      ->type_name("FILE");
+  cmd.add_option("--cage", o.check_cage,
+                 "With CL data: the cage it was made for; every move is checked against it "
+                 "before it is streamed (required)")
+      ->type_name("CAGE.obj");
+  cmd.add_option("--spindle", o.spindle_rpm, "Spindle speed, rpm (S and M3 at the start)")
+      ->check(CLI::Range(0.0, 200000.0));
 }
 
 void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter& reporter,
@@ -78,7 +73,7 @@ void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter&
   }
 }
 
-Expected<void> run_job(const RunOptions& o, Logger& log) {
+Expected<void> run_job(const JobRecord& o, Logger& log) {
   block_stop_signals(); // before any thread starts
   SUBFEED_TRY_ASSIGN(auto spec, job_spec(o, log));
   const auto machine = spec.machine;
@@ -86,16 +81,7 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
   const double tolerance = spec.post.post.tolerance;
   const bool fanuc = machine.controller.protocol == post::Protocol::fanuc;
   SUBFEED_TRY_ASSIGN(auto journal, drivers::Journal::open(journal_path(o)));
-  LinkRequest request;
-  request.port = o.port;
-  request.tcp = o.tcp;
-  request.sim = o.sim ? simulator_for(machine) : std::string();
-  request.protocol = std::string(post::to_string(machine.controller.protocol));
-  request.sim_speed = o.sim_speed;
-  request.sim_baud = o.sim_baud;
-  if (fanuc && o.sim_baud == 0) {
-    request.sim_baud = 115200; // drip feed paces itself by the wire: it needs a speed
-  }
+  const LinkRequest request = link_request_for(o, machine);
   const auto serial = serial_options_for(machine);
   SUBFEED_TRY_ASSIGN(auto link, open_link(request, serial));
   SUBFEED_TRY_ASSIGN(auto inbox, drivers::ControlInbox::create());
@@ -106,7 +92,7 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
   journal.event("job", encode_job(o));
   const ControlThread control(*inbox, !o.json);
   job.start();
-  const auto summary = stream(o, request.sim_baud, machine, link, job, *inbox, observer);
+  const auto summary = stream_job(o, request.sim_baud, machine, link, job, *inbox, observer);
   journal.end(summary);
   if (!summary) {
     const Error error = with_simulated_alarm(summary.error(), link);
@@ -131,7 +117,7 @@ Expected<void> run_job(const RunOptions& o, Logger& log) {
 } // namespace
 
 void add_run_command(CLI::App& app, Action& chosen) {
-  auto o = std::make_shared<RunOptions>();
+  auto o = std::make_shared<JobRecord>();
   CLI::App* cmd = app.add_subcommand(
       "run", "Plan, post and drip-feed one job, lazily: cutting starts while planning goes on");
   cmd->add_option("cage", o->cage,

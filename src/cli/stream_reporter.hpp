@@ -4,11 +4,13 @@
 // for scripts (--json), or nothing (--quiet). Everything also goes to the --log file.
 
 #include "drivers/grbl_streamer.hpp"
-#include "logger.hpp"
+#include "job/logger.hpp"
 
 #include <chrono>
 
 namespace subfeed::cli {
+
+using job::Logger;
 
 // JSON string contents: controller messages may carry quotes, backslashes or noise bytes.
 [[nodiscard]] std::string json_escape(std::string_view text);

@@ -2,7 +2,7 @@
 // scallop measurement of a path on its surface (geometry/path_verifier.hpp).
 
 #include "command.hpp"
-#include "tool_spec.hpp"
+#include "job/tool_spec.hpp"
 
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 
 namespace subfeed::cli {
+
+using namespace subfeed::job; // NOLINT: the front wires the job library
 
 namespace {
 
@@ -36,6 +38,7 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
     options.scallop_target = o.scallop;
   }
   options.sample_spacing = o.spacing;
+  options.name = std::filesystem::path(o.cage).filename().string();
   if (!o.svg.empty()) {
     options.svg = o.svg;
   }
@@ -71,7 +74,8 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
     if (!picture.empty()) {
       log.info(
           "  picture: " + picture +
-          " (top view; scallop blue = 0 to red = max, black = gouge over 1 um, white = passes)");
+          " (top view; scallop blue = 0 to red = max with its colour bar in mm, black = gouge "
+          "over 1 um, white = passes, a scale bar in mm)");
     }
   }
   return {};

@@ -327,8 +327,9 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
     }
   }
   if (options.svg || options.png) {
-    const VerifyPicture picture{std::move(points), std::move(heights), std::move(gouges),
-                                report.max_scallop, path.passes_xy};
+    const VerifyPicture picture{std::move(points), std::move(heights),  std::move(gouges),
+                                report.max_scallop, options.name,       options.scallop_target,
+                                path.passes_xy};
     if (options.svg) {
       SUBFEED_TRY(write_svg(*options.svg, picture));
     }

@@ -1,12 +1,14 @@
 #include "geometry/verify_picture.hpp"
 
 #include "base/atomic_output_file.hpp"
+#include "base/bitmap_text.hpp"
 #include "base/png_file.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <string>
 
 namespace subfeed::geometry {
 
@@ -72,18 +74,13 @@ Raster rasterise(const VerifyPicture& picture) {
   return r;
 }
 
-std::array<std::uint8_t, 3> colour(double v, double max_height) {
+Rgb colour(double v, double max_height) {
   if (v == gouge_mark) {
     return {0, 0, 0};
   }
   const double f = max_height > 0.0 ? std::clamp(v / max_height, 0.0, 1.0) : 0.0;
   return {static_cast<std::uint8_t>(255 * f), static_cast<std::uint8_t>(80 * (1 - f)),
           static_cast<std::uint8_t>(255 * (1 - f))};
-}
-
-std::string legend(double max_height) {
-  return fmt::format("scallop 0 (blue) to {:.4f} mm (red); black: gouge over 1 um; white: passes",
-                     max_height);
 }
 
 void draw_line(RgbImage& image, Eigen::Vector2d a, const Eigen::Vector2d& b) {
@@ -106,22 +103,102 @@ template <class Visit> void for_each_cell(const Raster& r, double max_height, Vi
   }
 }
 
+// Where the title, the map, the colour bar and the scale bar go, in pixels. The map keeps
+// its raster's size; the canvas grows around it so the legend always fits.
+struct Layout {
+  static constexpr int pad = 8, text_scale = 2, bar_width = 16, ticks = 5;
+  int map_x = pad, map_y = 0, map_w = 0, map_h = 0;
+  int bar_x = 0, bar_y = 0, bar_h = 0;
+  int scale_y = 0, scale_px = 0;
+  double scale_mm = 0.0;
+  int width = 0, height = 0;
+  std::string title;
+  double max_height = 0.0;
+
+  // The height a tick stands for, tick 0 at the bottom of the bar.
+  [[nodiscard]] double tick_value(int tick) const {
+    return max_height * tick / (ticks - 1);
+  }
+  [[nodiscard]] int tick_y(int tick) const { return bar_y + bar_h - bar_h * tick / (ticks - 1); }
+};
+
+// The longest 1, 2 or 5 times a power of ten that is at most a quarter of `span_mm`.
+double nice_length(double span_mm) {
+  const double target = std::max(span_mm / 4.0, 1e-6);
+  const double decade = std::pow(10.0, std::floor(std::log10(target)));
+  for (const double m : {5.0, 2.0, 1.0}) {
+    if (m * decade <= target) {
+      return m * decade;
+    }
+  }
+  return decade;
+}
+
+std::string title_of(const VerifyPicture& picture) {
+  std::string title = picture.name.empty() ? std::string("scallop") : picture.name;
+  if (picture.target) {
+    title += fmt::format("   H {:g} mm", *picture.target);
+  }
+  return title + fmt::format("   max {:.3g} mm", picture.max_height);
+}
+
+Layout layout_of(const Raster& r, const VerifyPicture& picture) {
+  Layout l;
+  const int line = text_height(Layout::text_scale);
+  l.title = title_of(picture);
+  l.max_height = picture.max_height;
+  l.map_y = line + 2 * Layout::pad;
+  l.map_w = r.width * cell_pixels;
+  l.map_h = r.height * cell_pixels;
+  const int body_h = std::max(l.map_h, 180);
+  l.bar_x = l.map_x + l.map_w + 2 * Layout::pad;
+  l.bar_y = l.map_y + line + Layout::pad; // below the bar's own heading
+  l.bar_h = body_h - 2 * (line + Layout::pad);
+  l.scale_mm = nice_length(r.width * r.cell);
+  l.scale_px = static_cast<int>(std::lround(l.scale_mm / r.cell * cell_pixels));
+  l.scale_y = l.map_y + body_h + Layout::pad;
+  const int labels = text_width("0.00000", Layout::text_scale);
+  l.width = std::max(l.bar_x + Layout::bar_width + Layout::pad + labels + Layout::pad,
+                     text_width(l.title, Layout::text_scale) + 2 * Layout::pad);
+  l.height = l.scale_y + line + 2 * Layout::pad;
+  return l;
+}
+
+// `text` with XML's markup characters escaped, for the SVG.
+std::string xml_text(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  }
+  return out;
+}
+
+std::string tick_label(double value) {
+  return fmt::format("{:.3g}", value);
+}
+
 } // namespace
 
 Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture& picture) {
   const Raster r = rasterise(picture);
-  const int w = r.width * cell_pixels, h = r.height * cell_pixels;
+  const Layout l = layout_of(r, picture);
   SUBFEED_TRY_ASSIGN(auto out, AtomicOutputFile::create(file));
   out.write(fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" "
-                        "width=\"{0}\" height=\"{1}\">\n<g shape-rendering=\"crispEdges\">\n",
-                        w, h + 30));
+                        "width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
+                        "font-size=\"14\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"#fff\"/>\n"
+                        "<text x=\"{2}\" y=\"{3}\">{4}</text>\n"
+                        "<g shape-rendering=\"crispEdges\" transform=\"translate({5},{6})\">\n",
+                        l.width, l.height, Layout::pad, l.map_y - Layout::pad, xml_text(l.title), l.map_x,
+                        l.map_y));
   for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
     out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
                           "fill=\"rgb({},{},{})\"/>\n",
                           x * cell_pixels, y * cell_pixels, cell_pixels, cell_pixels, c[0], c[1],
                           c[2]));
   });
-  out.write("</g>\n<g fill=\"none\" stroke=\"#fff\" stroke-width=\"0.6\">\n");
+  out.write(fmt::format("</g>\n<g fill=\"none\" stroke=\"#fff\" stroke-width=\"0.6\" "
+                        "transform=\"translate({},{})\">\n",
+                        l.map_x, l.map_y));
   for (const auto& pass : picture.passes_xy) {
     std::string pts;
     for (std::size_t i = 0; i < pass.size(); i += std::max<std::size_t>(1, pass.size() / 400)) {
@@ -130,27 +207,84 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
     }
     out.write("<polyline points=\"" + pts + "\"/>\n");
   }
-  out.write(fmt::format("</g>\n<text x=\"4\" y=\"{}\" font-size=\"14\" "
-                        "font-family=\"sans-serif\">{}</text>\n</svg>\n",
-                        h + 20, legend(picture.max_height)));
+  out.write("</g>\n");
+  const auto top = colour(picture.max_height, picture.max_height), bottom = colour(0.0, 1.0);
+  out.write(fmt::format(
+      "<defs><linearGradient id=\"scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
+      "<stop offset=\"0\" stop-color=\"rgb({},{},{})\"/><stop offset=\"1\" "
+      "stop-color=\"rgb({},{},{})\"/></linearGradient></defs>\n"
+      "<text x=\"{}\" y=\"{}\">scallop, mm</text>\n"
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#scale)\" stroke=\"#000\"/>\n",
+      bottom[0], bottom[1], bottom[2], top[0], top[1], top[2], l.bar_x, l.bar_y - Layout::pad,
+      l.bar_x, l.bar_y, Layout::bar_width, l.bar_h));
+  for (int t = 0; t < Layout::ticks; ++t) {
+    out.write(fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n",
+                          l.bar_x + Layout::bar_width + Layout::pad, l.tick_y(t) + 5,
+                          tick_label(l.tick_value(t))));
+  }
+  out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"#000\"/>"
+                        "<text x=\"{}\" y=\"{}\">gouge</text>\n",
+                        l.bar_x, l.bar_y + l.bar_h + Layout::pad, Layout::bar_width,
+                        l.bar_x + Layout::bar_width + Layout::pad,
+                        l.bar_y + l.bar_h + Layout::pad + 10));
+  out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"4\" fill=\"#000\"/>"
+                        "<text x=\"{}\" y=\"{}\">{:g} mm</text>\n</svg>\n",
+                        l.map_x, l.scale_y + 5, l.scale_px, l.map_x + l.scale_px + Layout::pad,
+                        l.scale_y + 12, l.scale_mm));
   return out.commit();
 }
 
-Expected<void> write_png(const std::filesystem::path& file, const VerifyPicture& picture) {
-  const Raster r = rasterise(picture);
-  RgbImage image(r.width * cell_pixels, r.height * cell_pixels, 255, 255, 255);
-  for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
-    for (int dy = 0; dy < cell_pixels; ++dy) {
-      for (int dx = 0; dx < cell_pixels; ++dx) {
-        image.set(x * cell_pixels + dx, y * cell_pixels + dy, c[0], c[1], c[2]);
-      }
-    }
-  });
-  for (const auto& pass : picture.passes_xy) {
-    for (std::size_t i = 1; i < pass.size(); ++i) {
-      draw_line(image, r.pixel(pass[i - 1]), r.pixel(pass[i]));
+namespace {
+
+void fill(RgbImage& image, int x, int y, int w, int h, const Rgb& c) {
+  for (int dy = 0; dy < h; ++dy) {
+    for (int dx = 0; dx < w; ++dx) {
+      image.set(x + dx, y + dy, c[0], c[1], c[2]);
     }
   }
+}
+
+// The colour bar with its ticks, the gouge swatch and the scale bar.
+void draw_legend(RgbImage& image, const Layout& l) {
+  constexpr Rgb black{0, 0, 0};
+  constexpr int s = Layout::text_scale;
+  draw_text(image, Layout::pad, Layout::pad, l.title, s, black);
+  draw_text(image, l.bar_x, l.bar_y - Layout::pad - text_height(s), "scallop, mm", s, black);
+  for (int y = 0; y < l.bar_h; ++y) {
+    const double v = l.max_height * (l.bar_h - 1 - y) / std::max(1, l.bar_h - 1);
+    fill(image, l.bar_x, l.bar_y + y, Layout::bar_width, 1, colour(v, l.max_height));
+  }
+  for (int t = 0; t < Layout::ticks; ++t) {
+    const int y = std::min(l.tick_y(t), l.bar_y + l.bar_h - 1);
+    fill(image, l.bar_x + Layout::bar_width, y, 4, 1, black);
+    draw_text(image, l.bar_x + Layout::bar_width + Layout::pad, y - text_height(s) / 2,
+              tick_label(l.tick_value(t)), s, black);
+  }
+  const int swatch_y = l.bar_y + l.bar_h + Layout::pad;
+  fill(image, l.bar_x, swatch_y, Layout::bar_width, text_height(s), black);
+  draw_text(image, l.bar_x + Layout::bar_width + Layout::pad, swatch_y, "gouge", s, black);
+  fill(image, l.map_x, l.scale_y + text_height(s) / 2 - 2, l.scale_px, 4, black);
+  draw_text(image, l.map_x + l.scale_px + Layout::pad, l.scale_y,
+            fmt::format("{:g} mm", l.scale_mm), s, black);
+}
+
+} // namespace
+
+Expected<void> write_png(const std::filesystem::path& file, const VerifyPicture& picture) {
+  const Raster r = rasterise(picture);
+  const Layout l = layout_of(r, picture);
+  RgbImage image(l.width, l.height, 255, 255, 255);
+  for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
+    fill(image, l.map_x + x * cell_pixels, l.map_y + y * cell_pixels, cell_pixels, cell_pixels,
+         {c[0], c[1], c[2]});
+  });
+  const Eigen::Vector2d offset(l.map_x, l.map_y);
+  for (const auto& pass : picture.passes_xy) {
+    for (std::size_t i = 1; i < pass.size(); ++i) {
+      draw_line(image, r.pixel(pass[i - 1]) + offset, r.pixel(pass[i]) + offset);
+    }
+  }
+  draw_legend(image, l);
   return write_png(file, image);
 }
 

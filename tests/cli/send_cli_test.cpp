@@ -54,7 +54,7 @@ TEST_CASE("send --json prints one event per line", "[pty]") {
   CHECK(r.out.find("{\"event\":\"done\",\"lines\":52,") != std::string::npos);
 }
 
-TEST_CASE("send with a machine config takes its settings; a contradicting simulator is refused",
+TEST_CASE("send with a machine config takes its settings, a contradicting simulator is refused",
           "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(20, 3000));
@@ -97,7 +97,7 @@ TEST_CASE("send refuses bad command lines and bad files with the right exit code
   CHECK_FALSE(ports.out.empty());
 }
 
-TEST_CASE("subfeed-sim serves a pty that send --port streams to; an error:N exits 3", "[pty]") {
+TEST_CASE("subfeed-sim serves a pty that send --port streams to, an error:N exits 3", "[pty]") {
   const subfeed::testing::TempDir dir;
   const auto job = dir.write("job.nc", moves(100, 3000));
   BackgroundProcess sim({sim_bin, "grbl", "--speed", "1000", "--error-on-line", "40"});

@@ -1,6 +1,5 @@
 // The real DNC sender over a real pty against the simulated Fanuc-style control.
 
-#include "drivers/fanuc_modal_state.hpp"
 #include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
 #include "sim/fanuc_sim.hpp"
@@ -262,18 +261,6 @@ TEST_CASE("DNC: a stop command stops sending at once", "[pty]") {
   REQUIRE_FALSE(result);
   CHECK(result.error().code == ErrorCode::stopped);
   CHECK(bench.sim->stats().blocks_received < 100);
-}
-
-TEST_CASE("DNC: modal state words are tracked by group") {
-  subfeed::drivers::FanucModalState modal;
-  modal.apply("G20 G18 G91 (COMMENT G21) G55");
-  modal.apply("G00 X1 S5000 M04 T7");
-  modal.apply("M09");
-  const auto blocks = modal.restore_blocks({}).value();
-  CHECK(blocks == std::vector<std::string>{"G20 G18 G91 G55", "T7", "S5000 M04", "M09", "G00"});
-  subfeed::drivers::FanucModalState tcp;
-  tcp.apply("G43.5 H1 I0 J0 K1");
-  CHECK_FALSE(tcp.restore_blocks({}));
 }
 
 TEST_CASE("DNC soak: 100,000 blocks with random drain, no overrun, exact delivery", "[pty][slow]") {

@@ -5,7 +5,7 @@
 
 using namespace subfeed::drivers;
 
-TEST_CASE("only ok and error:N answer a line; every push message is recognised") {
+TEST_CASE("only ok and error:N answer a line, every push message is recognised") {
   CHECK(classify_reply("ok").kind == ReplyKind::ok);
   const auto e = classify_reply("error:22");
   CHECK(e.kind == ReplyKind::error);

@@ -1,7 +1,7 @@
 // The feed direction chosen by predicted path length, on grid troughs whose limit surfaces
 // are exact (z = b y^2 runs along X, z = a x^2 along Y): passes along a trough are spaced
 // across its concave curve, where the ball leaves a smaller scallop at a given step
-// (METHOD.md §5: 2.70e-2 against 3.61e-2 flat), passes across it along the flat, so the
+// (docs/METHOD.md §5: 2.70e-2 against 3.61e-2 flat), passes across it along the flat, so the
 // path along the trough is the shorter one.
 
 #include "geometry/limit_surface.hpp"

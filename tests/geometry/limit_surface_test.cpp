@@ -85,7 +85,7 @@ TEST_CASE("an infinitely sharp crease pulls the limit onto the crease curve") {
   CHECK(creased.evaluate(grid_face(n, 3, mid), 0.5, 0.0)->point.z() == Approx(h).margin(1e-12));
 }
 
-// Measured, and narrower than METHOD.md §1 states: Bfr at level L is exact (to rounding) at
+// Measured (docs/METHOD.md §1): Bfr at level L is exact (to rounding) at
 // an extraordinary vertex and outside its 2^-L parameter neighbourhood; inside that
 // neighbourhood it approximates, off by up to 7.8e-4 on a unit cube at level 4, roughly
 // halving per level. All eight cube vertices are extraordinary, so every face corner is one.

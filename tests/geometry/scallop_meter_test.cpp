@@ -33,7 +33,7 @@ double scallop_between_passes(double rho) {
 
 } // namespace
 
-TEST_CASE("the scallop meter reproduces METHOD.md's known answers") {
+TEST_CASE("the scallop meter reproduces docs/METHOD.md's known answers") {
   std::vector<Capsule> flat;
   for (const double x : {-0.6, 0.6}) {
     flat.push_back({{x, -10, r}, {x, 10, r}, r});
@@ -55,7 +55,7 @@ TEST_CASE("the meter agrees with the flat closed form to high precision") {
   }
 }
 
-TEST_CASE("at a contact point nothing is left; a ball below the surface is a gouge") {
+TEST_CASE("at a contact point nothing is left, a ball below the surface is a gouge") {
   const std::vector<Capsule> pass{{{0, -10, r}, {0, 10, r}, r}};
   const auto contact = measure_scallop({0, 0, 0}, Eigen::Vector3d::UnitZ(), pass, 1.0);
   CHECK(contact.height == Approx(0.0).margin(1e-12));

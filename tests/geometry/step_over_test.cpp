@@ -33,9 +33,9 @@ TEST_CASE("flat step-over and scallop are inverse closed forms") {
   }
 }
 
-TEST_CASE("curved step-over matches the law of cosines and METHOD.md's known answers") {
+TEST_CASE("curved step-over matches the law of cosines and docs/METHOD.md's known answers") {
   constexpr double r = 5.0;
-  // Scallops measured for a 1.2 mm chord (METHOD.md §5).
+  // Scallops measured for a 1.2 mm chord (docs/METHOD.md §5).
   CHECK(contact_step(r, 4.531748e-2, 20.0) == Approx(1.2).epsilon(1e-6));
   CHECK(contact_step(r, 2.704269e-2, -20.0) == Approx(1.2).epsilon(1e-6));
   CHECK(contact_scallop(r, 1.2, 20.0) == Approx(4.531748e-2).epsilon(1e-6));
@@ -51,13 +51,13 @@ TEST_CASE("curved step-over matches the law of cosines and METHOD.md's known ans
 
 TEST_CASE("the curved form stays exact where the textbook form cancels") {
   // For huge |rho| the step tends to flat * rho / sqrt((rho + r)(rho + h)), exact to
-  // O(h r / rho^2). METHOD.md: the textbook form is off by 3e-4 mm at 1e6 and gives 0 at 1e9.
+  // O(h r / rho^2). docs/METHOD.md: the textbook form is off by 3e-4 mm at 1e6 and gives 0 at 1e9.
   constexpr double r = 5.0, h = 0.01;
   for (const double rho : {1e6, 1e9, 1e12, -1e9}) {
     const double asymptote = flat_step(r, h) * std::abs(rho) / std::sqrt((rho + r) * (rho + h));
     CHECK(contact_step(r, h, rho) == Approx(asymptote).epsilon(1e-12));
   }
-  // First-order check from METHOD.md: w ~ sqrt(8 r h rho / (rho + r)).
+  // First-order check from docs/METHOD.md: w ~ sqrt(8 r h rho / (rho + r)).
   CHECK(contact_step(r, 1e-4, 20.0) ==
         Approx(std::sqrt(8.0 * r * 1e-4 * 20.0 / 25.0)).epsilon(1e-4));
 }

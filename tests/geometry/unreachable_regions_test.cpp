@@ -11,7 +11,7 @@
 
 using namespace subfeed::geometry;
 
-TEST_CASE("blocked vertices sharing triangle edges form one region; apart, two") {
+TEST_CASE("blocked vertices sharing triangle edges form one region, apart, two") {
   // A strip of 8 vertices in two rows: x = 0..3, y = 0 and 1; triangles between them.
   SurfaceMesh mesh;
   for (int row = 0; row < 2; ++row) {

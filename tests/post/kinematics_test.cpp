@@ -38,7 +38,7 @@ double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) 
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
-// PROTOCOLS.md's xyzac-trt "joints from work position", typed in as written (one sign s).
+// docs/PROTOCOLS.md's xyzac-trt "joints from work position", typed in as written (one sign s).
 std::array<double, 3> protocols_joints(const ToolPose& pose, double a_deg, double c_deg, double s,
                                        const RotaryGeometry& g) {
   const double cA = std::cos(a_deg * deg), sA = std::sin(a_deg * deg);

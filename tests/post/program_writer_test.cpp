@@ -95,7 +95,7 @@ post::MotionBlock linear(double x, double feed, post::FeedMode mode = post::Feed
 
 } // namespace
 
-TEST_CASE("modal words are written once; F on every inverse-time block") {
+TEST_CASE("modal words are written once, F on every inverse-time block") {
   post::ProgramOptions options;
   const auto lines =
       write_blocks(options, {linear(1, 100), linear(2, 100), linear(3, 50.0),

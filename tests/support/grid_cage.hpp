@@ -1,5 +1,5 @@
 #pragma once
-// Cages with known limit surfaces (METHOD.md §5): on an n x n grid with spacing g, control
+// Cages with known limit surfaces (docs/METHOD.md §5): on an n x n grid with spacing g, control
 // points z = a x^2 + b y^2 - (a + b) g^2 / 3 give the limit surface z = a x^2 + b y^2 exactly
 // on the interior faces. Faces wind counter-clockwise seen from +Z.
 

@@ -38,7 +38,7 @@ private:
   std::deque<ControlCommand> commands_;
 };
 
-// GRBL 1.1 realtime command bytes (PROTOCOLS.md).
+// GRBL 1.1 realtime command bytes (docs/PROTOCOLS.md).
 namespace grbl_realtime {
 inline constexpr unsigned char status = '?';
 inline constexpr unsigned char feed_hold = '!';

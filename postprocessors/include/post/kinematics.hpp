@@ -3,7 +3,7 @@
 // a tool pose in the workpiece frame to the joint positions that put the tool there, and
 // back. One machine type per file; each states its sign conventions at its top.
 //
-// Frames and units (ARCHITECTURE.md): right-handed, workpiece Z up; a pose is the tool tip
+// Frames and units (docs/ARCHITECTURE.md): right-handed, workpiece Z up; a pose is the tool tip
 // (mm) and the unit tool axis pointing from the tip toward the spindle. Joints are X Y Z in
 // mm and A B C in degrees; axes a machine lacks stay 0. Radians only inside.
 

@@ -49,7 +49,7 @@ struct AxisLimits {
 
 using AxisSet = std::array<std::optional<AxisLimits>, axis_letters.size()>;
 
-// Geometry of the five-axis types, named as LinuxCNC names it (PROTOCOLS.md). A direction
+// Geometry of the five-axis types, named as LinuxCNC names it (docs/PROTOCOLS.md). A direction
 // of +1 is ISO 841: a positive angle moves the tool relative to the work by the right-hand
 // rule (a table therefore turns the other way); -1 is the opposite, LinuxCNC's default.
 struct RotaryGeometry {

@@ -1,5 +1,5 @@
 #pragma once
-// A simulated Fanuc-style control reading a program by DNC drip feed (PROTOCOLS.md): a
+// A simulated Fanuc-style control reading a program by DNC drip feed (docs/PROTOCOLS.md): a
 // receive buffer drained by an execution model (block time from feed and length), DC3
 // (XOFF) at the high-water mark and DC1 (XON) at the low-water mark, an overrun alarm when
 // the sender writes more than `overrun_tolerance` characters after the DC3 has left

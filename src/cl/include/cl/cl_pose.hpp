@@ -1,5 +1,5 @@
 #pragma once
-// The pose at the seam between planning and post-processing (ARCHITECTURE.md): where the
+// The pose at the seam between planning and post-processing (docs/ARCHITECTURE.md): where the
 // tool tip goes, which way the tool points, and how it gets there. The one type the
 // geometry core and the postprocessors share; it knows nothing of meshes or machines.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The CL-surface deformation of Kim & Yang as METHOD.md §3 corrects it: every CL vertex
+// The CL-surface deformation of Kim & Yang as docs/METHOD.md §3 corrects it: every CL vertex
 // gets a deformed coordinate xi' along the slicing normal s with d(xi')/d(xi) = eta =
 // reference / interval, solved over the whole mesh as sparse least squares over its edges
 // (one vertex anchored per connected piece; Eigen's sparse LDLT). Edges weigh by how far

@@ -29,7 +29,7 @@ struct FaceTessellation {
 };
 
 // 4 is the least level that matches exact evaluation near extraordinary vertices to
-// rounding (METHOD.md §1); OpenSubdiv's default of 2 is off by up to 4e-3 mm on a unit cube.
+// rounding (docs/METHOD.md §1); OpenSubdiv's default of 2 is off by up to 4e-3 mm on a unit cube.
 inline constexpr int min_approx_level = 4;
 inline constexpr int max_approx_level = 10;
 

@@ -2,7 +2,7 @@
 // Cuts a triangle mesh with the level sets of a per-vertex scalar (the deformed coordinate
 // xi'), one level at a time, and chains the pieces into polylines. A point of a polyline
 // is an edge (a, b) and the parameter t where the level crosses it, so the caller maps it
-// back onto any per-vertex data exactly (the inverse deformation of METHOD.md §3). Memory:
+// back onto any per-vertex data exactly (the inverse deformation of docs/METHOD.md §3). Memory:
 // the mesh, an order of its triangles, and one level's pieces.
 
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// What spacing each CL vertex needs for the scallop target (METHOD.md §2): the radius of
+// What spacing each CL vertex needs for the scallop target (docs/METHOD.md §2): the radius of
 // normal curvature across the passes (the slicing normal projected into the tangent
 // plane), the spacing between ball centres that leaves scallop h, and the distance between
 // slicing planes that gives it at the local slope.

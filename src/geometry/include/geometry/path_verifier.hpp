@@ -7,7 +7,7 @@
 // missed. The same samples are measured apart against the sweeps of plunges and retracts
 // (links) and of rapids, so that a link or rapid into the part is told from a cutting gouge.
 //
-// The ideal bound L* = integral of dA / w(h, rho) (METHOD.md §5) uses the measured worst
+// The ideal bound L* = integral of dA / w(h, rho) (docs/METHOD.md §5) uses the measured worst
 // scallop as h (or the target when given), rho across the nearest pass, and w from the
 // circle geometry of two neighbouring balls, written here on its own.
 
@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace subfeed::geometry {
 
@@ -28,6 +29,7 @@ struct VerifyOptions {
   double sample_spacing = 0.0;              // mm; 0: a quarter of the typical pass spacing
   std::optional<std::filesystem::path> svg; // top view over a scallop heat map
   std::optional<std::filesystem::path> png; // the same picture as PNG
+  std::string name;                         // the part, for the picture's title
 };
 
 // Samples of the surface inside the ball's sweep over moves that must not cut.

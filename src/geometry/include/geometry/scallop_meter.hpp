@@ -1,5 +1,5 @@
 #pragma once
-// The independent scallop meter (METHOD.md §5). It shares nothing with the step-over code:
+// The independent scallop meter (docs/METHOD.md §5). It shares nothing with the step-over code:
 // it measures what a tool path leaves, from the swept volume alone. The ball swept along a
 // segment of ball centres is a capsule of the ball's radius. For a design-surface point p
 // with unit normal n (toward the tool), the material left there is the least t >= 0 at which

@@ -1,5 +1,5 @@
 #pragma once
-// Step-over for a ball-end cutter and a target scallop height (METHOD.md §2). All lengths
+// Step-over for a ball-end cutter and a target scallop height (docs/METHOD.md §2). All lengths
 // in mm. rho is the signed radius of normal curvature of the design surface across the
 // passes: > 0 convex, < 0 concave, infinite (use the flat functions) for a plane; the ball
 // gouges unless |rho| > r.

@@ -1,6 +1,6 @@
 #pragma once
 // Constant-scallop tool paths on a limit surface by CL-surface deformation (Yuan & Shao
-// 2012, METHOD.md §1-4), produced one pass at a time:
+// 2012, docs/METHOD.md §1-4), produced one pass at a time:
 //  1. the limit surface meshed within a chordal tolerance well under the scallop target,
 //     each cage face at its own rate;
 //  2. the CL surface: ball centres c = p + r n on that mesh;

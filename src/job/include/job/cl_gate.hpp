@@ -1,0 +1,19 @@
+#pragma once
+// The motion gate (geometry/motion_gate.hpp) for CL data made elsewhere, which `run` and
+// `post --cage` pass every pose through: the cage's limit surface and the CL header's ball.
+
+#include "base/error.hpp"
+#include "cl/cl_pose.hpp"
+#include "geometry/motion_gate.hpp"
+
+#include <filesystem>
+
+namespace subfeed::job {
+
+// A cutter other than a ball end is refused: the gate cannot yet measure it. A tolerance of
+// 0 is the gate's default.
+[[nodiscard]] Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage,
+                                                         const cl::ClHeader& header, int level,
+                                                         double tolerance_mm);
+
+} // namespace subfeed::job

@@ -1,0 +1,36 @@
+#pragma once
+// The planning settings `plan` and `run` share (tool, scallop, direction, axis, feeds, ...),
+// as the user gives them and as a job record keeps them, and how they become the planner's
+// geometry::PlanOptions.
+
+#include "base/error.hpp"
+#include "geometry/toolpath_planner.hpp"
+
+#include <string>
+
+namespace subfeed::job {
+
+struct PlanSettings {
+  std::string tool;
+  double scallop = 0.0;
+  std::string direction = "x";
+  bool baseline = false;
+  double axis_radius = 0.0;
+  std::string axis = "normal";
+  bool one_way = false;
+  double feed = 1000.0;
+  double plunge_feed = 300.0;
+  double clearance = 2.0;
+  double stay_down = -1.0; // mm; 0: every link retracts; < 0: the ball's diameter
+  double tolerance = 0.0;
+  // mm: the motion gate's deepest allowed cut; 0: the planner's default
+  double gate_tolerance = 0.0;
+  int level = geometry::min_approx_level;
+  int refine = 60;
+};
+
+// Checks what option parsing cannot (the scallop against the tool, the direction) and fills
+// the planner's options.
+[[nodiscard]] Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& settings);
+
+} // namespace subfeed::job

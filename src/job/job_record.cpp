@@ -1,0 +1,229 @@
+#include "job/job_record.hpp"
+
+#include "base/number_text.hpp"
+
+#include "job/cl_gate.hpp"
+
+#include "cl/cl_reader.hpp"
+#include "geometry/limit_surface.hpp"
+#include "geometry/obj_reader.hpp"
+#include "post/post_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <fmt/format.h>
+#include <map>
+
+namespace subfeed::job {
+
+namespace {
+
+std::string escape(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '%' || c == ' ' || c == '=' || static_cast<unsigned char>(c) < 0x21) {
+      out += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string unescape(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '%' && i + 2 < text.size()) {
+      int value = 0;
+      std::from_chars(text.data() + i + 1, text.data() + i + 3, value, 16);
+      out += static_cast<char>(value);
+      i += 2;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+std::string number(double v) {
+  return fmt::format("{}", v);
+}
+
+} // namespace
+
+bool reads_cl(const JobRecord& o) {
+  auto extension = std::filesystem::path(o.cage).extension().string();
+  std::ranges::transform(extension, extension.begin(),
+                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".cl";
+}
+
+JobFiles job_files(const JobRecord& o) {
+  const std::filesystem::path base = o.output.empty()
+                                         ? std::filesystem::path(o.cage).replace_extension()
+                                         : std::filesystem::path(o.output);
+  auto cl = base, nc = base;
+  cl += ".cl";
+  nc += ".nc";
+  return {reads_cl(o) ? std::filesystem::path(o.cage) : cl, nc};
+}
+
+std::filesystem::path journal_path(const JobRecord& o) {
+  if (!o.journal.empty()) {
+    return o.journal;
+  }
+  auto path = job_files(o).nc;
+  return path.replace_extension(".journal");
+}
+
+namespace {
+
+post::PostFileOptions post_options_for(const post::MachineConfig& machine, const JobRecord& o) {
+  post::PostFileOptions post;
+  post.program = post::program_options_for(machine);
+  // A drip-fed job restarts by the block the control shows (resume --block N).
+  post.program.line_numbers = machine.controller.protocol == post::Protocol::fanuc;
+  if (o.spindle_rpm > 0.0) {
+    post.program.spindle_rpm = o.spindle_rpm;
+  }
+  return post;
+}
+
+Expected<JobSpec> cl_job_spec(const JobRecord& o, post::MachineConfig machine) {
+  if (!o.plan.tool.empty() || o.plan.scallop != 0.0) {
+    return fail(ErrorCode::usage, "plans come from a cage: CL data already has its path and cutter",
+                {{}, 0, o.plan.tool.empty() ? "--scallop" : "--tool"});
+  }
+  if (o.check_cage.empty()) {
+    return fail(ErrorCode::usage,
+                "CL data reaches the machine only checked against the part: give the cage it "
+                "was made for",
+                {{}, 0, "--cage"});
+  }
+  SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(o.cage)); // the header, checked now
+  SUBFEED_TRY_ASSIGN(
+      auto gate, gate_for_cl(o.check_cage, reader.header(), o.plan.level, o.plan.gate_tolerance));
+  auto post = post_options_for(machine, o);
+  post.look_ahead = true; // the whole path exists: choose the start as `post` does
+  JobSpec spec{.plan = std::nullopt,
+               .machine = std::move(machine),
+               .post = post,
+               .header = reader.header(),
+               .files = job_files(o),
+               .gate = std::move(gate)};
+  return spec;
+}
+
+} // namespace
+
+Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
+  SUBFEED_TRY_ASSIGN(auto machine, post::load_machine_config(o.machine));
+  if (reads_cl(o)) {
+    return cl_job_spec(o, std::move(machine));
+  }
+  if (o.plan.tool.empty() || o.plan.scallop == 0.0) {
+    return fail(ErrorCode::usage, "planning from a cage needs --tool and --scallop",
+                {{}, 0, o.plan.tool.empty() ? "--tool" : "--scallop"});
+  }
+  SUBFEED_TRY_ASSIGN(auto plan, plan_options_from(o.plan));
+  if (machine.kinematics == post::KinematicsType::xyz && !plan.fixed_axis) {
+    plan.fixed_axis = true; // a three-axis machine holds the tool vertical
+    log.detail("three-axis machine: the tool axis stays vertical");
+  }
+  SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(o.cage));
+  SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, o.plan.level));
+  auto post = post_options_for(machine, o);
+  post.look_ahead = false; // the poses do not exist yet: the start follows the preferred tilt
+  cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
+                      {2 * plan.ball_radius, plan.ball_radius},
+                      !plan.fixed_axis};
+  return JobSpec{.plan = PlanInput{std::move(cage), std::move(surface), plan},
+                 .machine = std::move(machine),
+                 .post = post,
+                 .header = header,
+                 .files = job_files(o),
+                 .gate = std::nullopt};
+}
+
+std::string encode_job(const JobRecord& o) {
+  const auto& p = o.plan;
+  return fmt::format(
+      "cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
+      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
+      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
+      "gate_tolerance={}",
+      escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
+      escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
+      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level, p.refine,
+      number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance));
+}
+
+Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
+  std::map<std::string, std::string, std::less<>> fields;
+  while (!text.empty()) {
+    const auto end = std::min(text.find(' '), text.size());
+    const auto field = text.substr(0, end);
+    const auto eq = field.find('=');
+    if (eq != std::string_view::npos) {
+      fields[std::string(field.substr(0, eq))] = unescape(field.substr(eq + 1));
+    }
+    text.remove_prefix(std::min(end + 1, text.size()));
+  }
+  JobRecord o;
+  std::string bad_key; // the first key missing or unreadable
+  const auto get = [&](const char* key) -> std::string {
+    const auto it = fields.find(key);
+    if (it == fields.end()) {
+      bad_key = bad_key.empty() ? key : bad_key;
+      return {};
+    }
+    return it->second;
+  };
+  const auto real = [&](const char* key) {
+    const auto value = parse_double(get(key));
+    if (!value) {
+      bad_key = bad_key.empty() ? key : bad_key;
+    }
+    return value.value_or(0.0);
+  };
+  const auto integer = [&](const char* key) {
+    const auto value = parse_int(get(key));
+    if (!value) {
+      bad_key = bad_key.empty() ? key : bad_key;
+    }
+    return value.value_or(0);
+  };
+  o.cage = get("cage");
+  o.machine = get("machine");
+  o.output = get("output");
+  o.plan.tool = get("tool");
+  o.plan.scallop = real("scallop");
+  o.plan.direction = get("direction");
+  o.plan.baseline = get("baseline") == "1";
+  o.plan.axis_radius = real("axis_radius");
+  o.plan.axis = get("axis");
+  o.plan.one_way = get("one_way") == "1";
+  o.plan.feed = real("feed");
+  o.plan.plunge_feed = real("plunge_feed");
+  o.plan.clearance = real("clearance");
+  o.plan.tolerance = real("tolerance");
+  o.plan.level = integer("level");
+  o.plan.refine = integer("refine");
+  o.spindle_rpm = real("spindle");
+  // Journals from before stay-down links were planned with every link retracting.
+  o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
+  if (fields.contains("gate_tolerance")) {
+    o.plan.gate_tolerance = real("gate_tolerance");
+  }
+  if (const auto it = fields.find("check_cage"); it != fields.end()) {
+    o.check_cage = it->second;
+  }
+  if (!bad_key.empty()) {
+    return fail(ErrorCode::bad_input, "job record without a valid '" + bad_key + "'", where);
+  }
+  return o;
+}
+
+} // namespace subfeed::job
