@@ -1,5 +1,7 @@
 #include "drivers/gcode_line.hpp"
 
+#include "gcode/words.hpp"
+
 #include <cctype>
 #include <cstdio>
 
@@ -21,49 +23,20 @@ std::string describe_byte(unsigned char c) {
   return text;
 }
 
-// The G-code words of a stripped line whose letter is `letter`, as text after the letter.
-bool has_word(std::string_view line, char letter, std::string_view value) {
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    if (line[i] != letter) {
-      continue;
-    }
-    std::size_t end = i + 1;
-    while (end < line.size() && (std::isdigit(static_cast<unsigned char>(line[end])) != 0 ||
-                                 line[end] == '.' || line[end] == '-' || line[end] == '+')) {
-      ++end;
-    }
-    if (line.substr(i + 1, end - i - 1) == value) {
-      return true;
-    }
-  }
-  return false;
-}
-
-std::string strip(std::string_view raw) {
-  std::string out;
-  bool in_comment = false;
-  for (const char c : raw) {
-    if (in_comment) {
-      in_comment = c != ')';
-    } else if (c == '(') {
-      in_comment = true;
-    } else if (c == ';') {
-      break;
-    } else if (c != ' ' && c != '\t') {
-      out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    }
-  }
-  return out;
-}
-
 } // namespace
 
 bool needs_send_and_wait(std::string_view s) {
   if (!s.empty() && s.front() == '$') {
     return true;
   }
-  return (has_word(s, 'G', "10") && (has_word(s, 'L', "2") || has_word(s, 'L', "20"))) ||
-         has_word(s, 'G', "28.1") || has_word(s, 'G', "30.1");
+  bool g10 = false, l2 = false, home_set = false;
+  // Words up to the first that is not one: the controller will refuse such a line anyway.
+  (void)gcode::for_each_word(s, [&](const gcode::Word& w) {
+    g10 = g10 || (w.letter == 'G' && w.number == "10");
+    l2 = l2 || (w.letter == 'L' && (w.number == "2" || w.number == "20"));
+    home_set = home_set || (w.letter == 'G' && (w.number == "28.1" || w.number == "30.1"));
+  });
+  return (g10 && l2) || home_set;
 }
 
 Expected<PreparedLine> prepare_line(std::string_view raw, const LineRules& rules,
@@ -79,7 +52,7 @@ Expected<PreparedLine> prepare_line(std::string_view raw, const LineRules& rules
                   where);
     }
   }
-  const std::string stripped = strip(raw);
+  const std::string stripped = gcode::strip(raw).text;
   if (static_cast<int>(stripped.size()) > rules.line_limit) {
     return fail(ErrorCode::bad_input,
                 "line is " + std::to_string(stripped.size()) + " characters after stripping; the " +

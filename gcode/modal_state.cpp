@@ -2,7 +2,6 @@
 
 #include "gcode/words.hpp"
 
-
 #include <cmath>
 #include <string>
 

@@ -9,44 +9,41 @@ namespace subfeed::gcode {
 
 namespace {
 
-bool blank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '%';
-}
-
 bool number_char(char c) {
   return std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '-' || c == '+';
 }
 
-// The line without comments and blanks, upper-cased: words may be written with spaces
-// inside ("G 1", "X 1.5").
-Expected<std::string> compact(std::string_view line) {
-  std::string text;
-  bool comment = false;
-  for (const char c : line) {
-    if (comment) {
-      comment = c != ')';
-    } else if (c == '(') {
-      comment = true;
-    } else if (c == ';') {
-      break;
-    } else if (!blank(c)) {
-      text += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    }
-  }
-  if (comment) {
-    return fail(ErrorCode::bad_input, "comment not closed");
-  }
-  return text;
-}
-
 } // namespace
 
-Expected<void> for_each_word(std::string_view line,
-                             const std::function<void(const Word&)>& visit) {
-  SUBFEED_TRY_ASSIGN(const std::string text, compact(line));
+Stripped strip(std::string_view line) {
+  Stripped out;
+  for (const char c : line) {
+    if (out.open_comment) {
+      out.open_comment = c != ')';
+    } else if (c == '(') {
+      out.open_comment = true;
+    } else if (c == ';') {
+      break;
+    } else if (c != ' ' && c != '\t') {
+      out.text += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
+  }
+  return out;
+}
+
+Expected<void> for_each_word(std::string_view line, const std::function<void(const Word&)>& visit) {
+  const Stripped stripped = strip(line);
+  if (stripped.open_comment) {
+    return fail(ErrorCode::bad_input, "comment not closed");
+  }
+  const std::string& text = stripped.text;
   std::size_t i = 0;
   while (i < text.size()) {
     const char letter = text[i];
+    if (letter == '%' || letter == '\r') {
+      ++i;
+      continue;
+    }
     if (letter < 'A' || letter > 'Z') {
       return fail(ErrorCode::bad_input, std::string("'") + letter + "' where a letter should be");
     }

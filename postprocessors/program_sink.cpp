@@ -43,8 +43,8 @@ Expected<std::unique_ptr<ProgramSink>> ProgramSink::create(const MachineConfig& 
   SUBFEED_TRY_ASSIGN(auto program_file, AtomicOutputFile::create(program));
   SUBFEED_TRY_ASSIGN(auto map_file, AtomicOutputFile::create(map_path_for(program)));
   map_file.write("# subfeed map: nc_line cl_line cut|link\n");
-  return std::unique_ptr<ProgramSink>(new ProgramSink(
-      machine, options, std::move(program_file), std::move(map_file), std::move(taps)));
+  return std::unique_ptr<ProgramSink>(new ProgramSink(machine, options, std::move(program_file),
+                                                      std::move(map_file), std::move(taps)));
 }
 
 ProgramSink::ProgramSink(const MachineConfig& machine, const PostFileOptions& options,

@@ -1,8 +1,8 @@
 // `subfeed post PART.cl --machine M.toml [--dialect grbl|fanuc|linuxcnc] -o PART.nc`: CL
 // data to G-code for one machine (postprocessors/post_file.hpp).
 
-#include "job/cl_gate.hpp"
 #include "command.hpp"
+#include "job/cl_gate.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
 

@@ -102,7 +102,9 @@ Expected<void> resume(const ResumeOptions& o, Logger& log) {
 void add_resume_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<ResumeOptions>();
   CLI::App* cmd = app.add_subcommand("resume", "Continue a job from its journal after a fault");
-  cmd->add_option("journal", o->request.journal, "The job's journal")->required()->type_name("JOB.journal");
+  cmd->add_option("journal", o->request.journal, "The job's journal")
+      ->required()
+      ->type_name("JOB.journal");
   auto* link = cmd->add_option_group("link", "Where the controller is (exactly one)");
   link->add_option("--port", o->port, "Serial port")->type_name("DEV");
   link->add_option("--tcp", o->tcp, "TCP stream")->type_name("HOST:PORT");
@@ -121,9 +123,11 @@ void add_resume_command(CLI::App& app, Action& chosen) {
   cmd->add_flag("--yes", o->yes, "Do not ask before moving the machine");
   cmd->add_option("--clearance", o->request.clearance, "Retract along the tool axis, mm")
       ->check(CLI::Range(0.01, 1000.0));
-  cmd->add_option("--plunge-feed", o->request.plunge_feed, "Feed of the retract and the plunge, mm/min")
+  cmd->add_option("--plunge-feed", o->request.plunge_feed,
+                  "Feed of the retract and the plunge, mm/min")
       ->check(CLI::Range(1.0, 100000.0));
-  cmd->add_option("--connect-timeout", o->request.connect_timeout_s, "Seconds to wait for the controller")
+  cmd->add_option("--connect-timeout", o->request.connect_timeout_s,
+                  "Seconds to wait for the controller")
       ->check(CLI::Range(0.1, 600.0));
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return resume(*o, log); }; });
 }

@@ -6,15 +6,15 @@
 
 #include "command.hpp"
 #include "job/control_thread.hpp"
-#include "job/job_stream.hpp"
 #include "job/controller_link.hpp"
 #include "job/dry_run.hpp"
 #include "job/job_pipeline.hpp"
+#include "job/job_record.hpp"
+#include "job/job_stream.hpp"
 #include "job_reporter.hpp"
 #include "option_checks.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
-#include "job/job_record.hpp"
 
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/grbl_streamer.hpp"

@@ -75,7 +75,8 @@ void add_send_command(CLI::App& app, Action& chosen) {
       ->type_name("DEV");
   link->add_option("--tcp", o->request.tcp, "TCP stream (grblHAL Ethernet, serial-to-TCP server)")
       ->type_name("HOST:PORT");
-  link->add_option("--sim", o->request.sim, "Start a simulated controller on a pty and stream to it")
+  link->add_option("--sim", o->request.sim,
+                   "Start a simulated controller on a pty and stream to it")
       ->check(CLI::IsMember({"grbl", "grblhal", "fanuc"}));
   link->require_option(1);
   cmd->add_option("--machine", o->request.machine,
@@ -90,7 +91,8 @@ void add_send_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(16, 1024));
   cmd->add_flag("--send-and-wait", o->request.stream.send_and_wait,
                 "Send each line alone and wait for its answer");
-  cmd->add_flag("--keep-comments", o->request.stream.keep_comments, "Send comments and spaces as written");
+  cmd->add_flag("--keep-comments", o->request.stream.keep_comments,
+                "Send comments and spaces as written");
   cmd->add_flag("--continue-on-error", o->request.stream.continue_on_error,
                 "Report error:N answers and go on (for check runs)");
   cmd->add_flag("--check", o->request.stream.check_first,
@@ -102,13 +104,15 @@ void add_send_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--sim-speed", o->request.sim_speed,
                   "With --sim: run the machine N times faster than real time")
       ->check(positive_number());
-  cmd->add_option("--sim-baud", o->request.sim_baud, "With --sim: emulated wire speed (0 = unlimited)")
+  cmd->add_option("--sim-baud", o->request.sim_baud,
+                  "With --sim: emulated wire speed (0 = unlimited)")
       ->check(CLI::Range(0, 4000000));
   cmd->add_flag("--json", o->json, "Events as JSON, one per line, on stdout");
   cmd->add_option("--journal", o->request.journal,
                   "Append the job's journal to FILE (default: the program's path + .journal)")
       ->type_name("FILE");
-  cmd->add_option("--protocol", o->request.protocol, "grbl (character counting) or fanuc (DNC drip feed)")
+  cmd->add_option("--protocol", o->request.protocol,
+                  "grbl (character counting) or fanuc (DNC drip feed)")
       ->check(CLI::IsMember({"grbl", "fanuc"}));
   cmd->add_option("--data-bits", o->request.data_bits, "Serial data bits")
       ->check(CLI::IsMember({"7", "8"}));
@@ -123,7 +127,8 @@ void add_send_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--program-number", o->request.dnc.program_number,
                   "fanuc: O-number when the file has no framing")
       ->check(CLI::Range(1, 9999));
-  cmd->add_option("--nul-leader", o->request.dnc.nul_leader, "fanuc: NUL characters before the program")
+  cmd->add_option("--nul-leader", o->request.dnc.nul_leader,
+                  "fanuc: NUL characters before the program")
       ->check(CLI::Range(0, 10000));
   cmd->add_option("--nul-trailer", o->request.dnc.nul_trailer, "fanuc: NUL characters after it")
       ->check(CLI::Range(0, 10000));

@@ -35,7 +35,8 @@ std::string state_text(const drivers::StreamProgress& p) {
 
 StreamReporter::StreamReporter(Logger& log, bool json)
     : log_(log), json_(json),
-      terminal_(!json && log.verbosity() != job::Verbosity::quiet && ::isatty(STDERR_FILENO) != 0) {}
+      terminal_(!json && log.verbosity() != job::Verbosity::quiet && ::isatty(STDERR_FILENO) != 0) {
+}
 
 StreamReporter::~StreamReporter() {
   end_progress_line();

@@ -72,10 +72,9 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
   for (const auto& picture : {o.svg, o.png}) {
     if (!picture.empty()) {
-      log.info(
-          "  picture: " + picture +
-          " (top view; scallop blue = 0 to red = max with its colour bar in mm, black = gouge "
-          "over 1 um, white = passes, a scale bar in mm)");
+      log.info("  picture: " + picture +
+               " (top view; scallop blue = 0 to red = max with its colour bar in mm, black = gouge "
+               "over 1 um, white = passes, a scale bar in mm)");
     }
   }
   return {};

@@ -327,7 +327,7 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
     }
   }
   if (options.svg || options.png) {
-    const VerifyPicture picture{std::move(points), std::move(heights),  std::move(gouges),
+    const VerifyPicture picture{std::move(points),  std::move(heights), std::move(gouges),
                                 report.max_scallop, options.name,       options.scallop_target,
                                 path.passes_xy};
     if (options.svg) {

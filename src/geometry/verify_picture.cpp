@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <string>
+#include <string_view>
 
 namespace subfeed::geometry {
 
@@ -105,6 +106,8 @@ template <class Visit> void for_each_cell(const Raster& r, double max_height, Vi
 
 // Where the title, the map, the colour bar and the scale bar go, in pixels. The map keeps
 // its raster's size; the canvas grows around it so the legend always fits.
+constexpr std::string_view bar_heading = "scallop, mm";
+
 struct Layout {
   static constexpr int pad = 8, text_scale = 2, bar_width = 16, ticks = 5;
   int map_x = pad, map_y = 0, map_w = 0, map_h = 0;
@@ -116,9 +119,7 @@ struct Layout {
   double max_height = 0.0;
 
   // The height a tick stands for, tick 0 at the bottom of the bar.
-  [[nodiscard]] double tick_value(int tick) const {
-    return max_height * tick / (ticks - 1);
-  }
+  [[nodiscard]] double tick_value(int tick) const { return max_height * tick / (ticks - 1); }
   [[nodiscard]] int tick_y(int tick) const { return bar_y + bar_h - bar_h * tick / (ticks - 1); }
 };
 
@@ -152,14 +153,15 @@ Layout layout_of(const Raster& r, const VerifyPicture& picture) {
   l.map_h = r.height * cell_pixels;
   const int body_h = std::max(l.map_h, 180);
   l.bar_x = l.map_x + l.map_w + 2 * Layout::pad;
-  l.bar_y = l.map_y + line + Layout::pad; // below the bar's own heading
-  l.bar_h = body_h - 2 * (line + Layout::pad);
+  l.bar_y = l.map_y + line + 2 * Layout::pad;                         // below the bar's own heading
+  l.bar_h = body_h - (line + 2 * Layout::pad) - (line + Layout::pad); // and above the swatch
   l.scale_mm = nice_length(r.width * r.cell);
   l.scale_px = static_cast<int>(std::lround(l.scale_mm / r.cell * cell_pixels));
   l.scale_y = l.map_y + body_h + Layout::pad;
   const int labels = text_width("0.00000", Layout::text_scale);
-  l.width = std::max(l.bar_x + Layout::bar_width + Layout::pad + labels + Layout::pad,
-                     text_width(l.title, Layout::text_scale) + 2 * Layout::pad);
+  l.width = std::max({l.bar_x + Layout::bar_width + Layout::pad + labels + Layout::pad,
+                      l.bar_x + text_width(bar_heading, Layout::text_scale) + Layout::pad,
+                      text_width(l.title, Layout::text_scale) + 2 * Layout::pad});
   l.height = l.scale_y + line + 2 * Layout::pad;
   return l;
 }
@@ -188,8 +190,8 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
                         "font-size=\"14\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"#fff\"/>\n"
                         "<text x=\"{2}\" y=\"{3}\">{4}</text>\n"
                         "<g shape-rendering=\"crispEdges\" transform=\"translate({5},{6})\">\n",
-                        l.width, l.height, Layout::pad, l.map_y - Layout::pad, xml_text(l.title), l.map_x,
-                        l.map_y));
+                        l.width, l.height, Layout::pad, l.map_y - Layout::pad, xml_text(l.title),
+                        l.map_x, l.map_y));
   for_each_cell(r, picture.max_height, [&](int x, int y, const auto& c) {
     out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
                           "fill=\"rgb({},{},{})\"/>\n",
@@ -213,9 +215,9 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
       "<defs><linearGradient id=\"scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
       "<stop offset=\"0\" stop-color=\"rgb({},{},{})\"/><stop offset=\"1\" "
       "stop-color=\"rgb({},{},{})\"/></linearGradient></defs>\n"
-      "<text x=\"{}\" y=\"{}\">scallop, mm</text>\n"
+      "<text x=\"{}\" y=\"{}\">{}</text>\n"
       "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#scale)\" stroke=\"#000\"/>\n",
-      bottom[0], bottom[1], bottom[2], top[0], top[1], top[2], l.bar_x, l.bar_y - Layout::pad,
+      bottom[0], bottom[1], bottom[2], top[0], top[1], top[2], l.bar_x, l.map_y + 14, bar_heading,
       l.bar_x, l.bar_y, Layout::bar_width, l.bar_h));
   for (int t = 0; t < Layout::ticks; ++t) {
     out.write(fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n",
@@ -249,7 +251,7 @@ void draw_legend(RgbImage& image, const Layout& l) {
   constexpr Rgb black{0, 0, 0};
   constexpr int s = Layout::text_scale;
   draw_text(image, Layout::pad, Layout::pad, l.title, s, black);
-  draw_text(image, l.bar_x, l.bar_y - Layout::pad - text_height(s), "scallop, mm", s, black);
+  draw_text(image, l.bar_x, l.map_y, bar_heading, s, black);
   for (int y = 0; y < l.bar_h; ++y) {
     const double v = l.max_height * (l.bar_h - 1 - y) / std::max(1, l.bar_h - 1);
     fill(image, l.bar_x, l.bar_y + y, Layout::bar_width, 1, colour(v, l.max_height));

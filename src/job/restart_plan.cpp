@@ -55,8 +55,8 @@ private:
   long after_;
 };
 
-Expected<void> ensure_program(const drivers::JournalSummary& j,
-                              const std::optional<JobRecord>& job, Logger& log) {
+Expected<void> ensure_program(const drivers::JournalSummary& j, const std::optional<JobRecord>& job,
+                              Logger& log) {
   if (std::filesystem::exists(j.program)) {
     return {};
   }
@@ -280,9 +280,10 @@ Expected<Restart> grbl_restart_found(drivers::Transport& link, const Interrupted
                                      const ResumeRequest& o, Logger& log) {
   const auto timeout = std::chrono::milliseconds(static_cast<long>(o.connect_timeout_s * 1e3));
   drivers::StatusPoller poller(link);
-  SUBFEED_TRY(poller.wait_until_still(timeout, std::chrono::minutes(10), [&log](const std::string& state) {
-    log.info("the machine is still moving (" + state + "): waiting for it to stop");
-  }));
+  SUBFEED_TRY(
+      poller.wait_until_still(timeout, std::chrono::minutes(10), [&log](const std::string& state) {
+        log.info("the machine is still moving (" + state + "): waiting for it to stop");
+      }));
   SUBFEED_TRY_ASSIGN(auto status, drivers::probe_status(link, timeout));
   SUBFEED_TRY_ASSIGN(status, poller.with_work_offset(std::move(status), 40));
   if (status.state == "Alarm") {
@@ -319,7 +320,6 @@ Expected<Restart> dnc_restart(const Interrupted& r, const ResumeRequest& o) {
   SUBFEED_TRY_ASSIGN(s.blocks, restart_blocks(r, o, window, s.after, here));
   return s;
 }
-
 
 Expected<drivers::StreamSummary> stream_rest(const Interrupted& r, Restart restart, Link& link,
                                              drivers::ControlInbox& inbox,

@@ -110,8 +110,7 @@ Expected<drivers::StreamSummary> send_dnc(SendRequest& o, const drivers::SerialO
 } // namespace
 
 Expected<drivers::StreamSummary> stream_file(SendRequest& o, const drivers::SerialOptions& serial,
-                                             drivers::GcodeSource& source,
-                                             drivers::Transport& link,
+                                             drivers::GcodeSource& source, drivers::Transport& link,
                                              drivers::ControlInbox* inbox,
                                              drivers::StreamObserver& observer) {
   if (o.protocol == "fanuc") {

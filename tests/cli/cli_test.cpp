@@ -1,5 +1,6 @@
 // The subfeed front as a user runs it: exit codes, one-line errors, help everywhere.
 
+#include "support/output_lines.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -8,6 +9,9 @@
 #include <fstream>
 #include <sstream>
 
+using subfeed::testing::has_line;
+using subfeed::testing::has_line_matching;
+using subfeed::testing::literal;
 using subfeed::testing::run_process;
 
 namespace {
@@ -27,17 +31,25 @@ TEST_CASE("the front answers --version and --help with exit 0") {
   CHECK(version.out.starts_with("subfeed "));
   const auto help = run_process({bin, "--help"});
   CHECK(help.exit_code == 0);
-  CHECK(help.out.find("inspect") != std::string::npos);
-  CHECK(help.out.find("config") != std::string::npos);
+  for (const char* line :
+       {"  inspect                     Check a control cage and report its limit surface",
+        "  plan                        Plan constant-scallop finishing passes on a cage",
+        "  resume                      Continue a job from its journal after a fault",
+        "  verify                      Measure the scallop and gouges a CL path leaves",
+        "  config                      Validate machine configs and show what they say",
+        "  ports                       List this computer's serial ports",
+        "  post                        Post-process CL data into G-code for one machine"}) {
+    CHECK(has_line(help.out, line));
+  }
 }
 
 TEST_CASE("every subcommand has --help") {
   for (const std::string cmd :
-       {"inspect", "plan", "verify", "config", "send", "ports", "post", "check"}) {
+       {"inspect", "plan", "verify", "config", "send", "ports", "post", "check", "run", "resume"}) {
     INFO(cmd);
     const auto help = run_process({bin, cmd, "--help"});
     CHECK(help.exit_code == 0);
-    CHECK(help.out.find("Usage: subfeed " + cmd) != std::string::npos);
+    CHECK(has_line_matching(help.out, "Usage: subfeed " + cmd + " \\[OPTIONS\\].*"));
   }
 }
 
@@ -80,8 +92,16 @@ TEST_CASE("inspect reports the sample seat's extent") {
       run_process({bin, "inspect", source_dir + "/examples/seat.obj", "--samples", "64"});
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("(size 17.6700 mm)") != std::string::npos);
-  CHECK(r.out.find("(size 4.2300 mm)") != std::string::npos);
+  const auto cage = source_dir + "/examples/seat.obj";
+  CHECK(r.out == "cage " + cage +
+                     ": 63 vertices, 48 faces (48 quads), 0 extraordinary vertices, 28 boundary "
+                     "edges, 0 creases, 0 corners, boundary edge only\n"
+                     "limit surface: 48 patches, area 201.382 mm^2 (approximation level 4, 64 "
+                     "samples per face edge)\n"
+                     "  X    -8.8350 ..     8.8350 mm  (size 17.6700 mm)\n"
+                     "  Y    -5.5100 ..     5.5100 mm  (size 11.0200 mm)\n"
+                     "  Z     0.0000 ..     4.2300 mm  (size 4.2300 mm)\n"
+                     "  steepest slope 72.6 deg from horizontal (near 8.467, -2.130, 0.623)\n");
 }
 
 TEST_CASE("a bad cage exits 2 with file and line") {
@@ -103,9 +123,11 @@ TEST_CASE("with --quiet nothing is printed and --log keeps everything, timestamp
   std::ifstream in(log);
   std::string first;
   std::getline(in, first);
-  CHECK(first.find(" info ") != std::string::npos);
-  CHECK(first.find("GRBL 3-axis router") != std::string::npos);
-  CHECK(first[4] == '-'); // ISO date first
+  // An ISO 8601 UTC time, the level, and the line the user would have seen.
+  CHECK(has_line_matching(
+      first, R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ info )" +
+                 literal(source_dir + "/configs/grbl-router-3axis.toml: 'GRBL 3-axis "
+                                      "router', kinematics xyz, protocol grbl, dialect grbl")));
 }
 
 TEST_CASE("an unwritable --log is a bad-input error naming it") {

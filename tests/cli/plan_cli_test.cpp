@@ -2,6 +2,7 @@
 
 #include "sim/pty.hpp"
 #include "support/hand_made_cl.hpp"
+#include "support/output_lines.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -15,13 +16,32 @@
 
 using namespace std::chrono_literals;
 using subfeed::testing::BackgroundProcess;
+using subfeed::testing::has_line;
+using subfeed::testing::has_line_matching;
+using subfeed::testing::line_captures;
+using subfeed::testing::literal;
 using subfeed::testing::run_process;
+using subfeed::testing::split_lines;
 using subfeed::testing::TempDir;
 
 namespace {
 
 const std::string bin = SUBFEED_BIN;
 const std::string source_dir = SUBFEED_SOURCE_DIR;
+
+// The plan summary's first line for `cl`, with the method named.
+std::string summary_line(const std::string& cl, const std::string& method) {
+  return literal(cl) + R"(: \d+ passes, \d+ points, cutting [0-9.]+ mm, links [0-9.]+ mm \()" +
+         literal(method) + R"(\))";
+}
+
+// The worst scallop verify measured, in mm (0 when the line is missing).
+double verified_max(const std::string& out) {
+  const auto got =
+      line_captures(out, R"(  scallop max ([0-9.]+) mm \(near -?[0-9.]+, -?[0-9.]+, )"
+                         R"(-?[0-9.]+\), mean [0-9.]+ mm, 99th percentile [0-9.]+ mm)");
+  return got.size() == 2 ? std::stod(got[1]) : 0.0;
+}
 
 } // namespace
 
@@ -33,12 +53,13 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
   const auto plan = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.03",
                                  "--tolerance", "0.002", "-o", cl});
   REQUIRE(plan.exit_code == 0);
-  CHECK(plan.out.find("deformed CL surface") != std::string::npos);
-  CHECK(plan.err.find("planning") == std::string::npos); // stderr is no terminal: no progress
+  CHECK(has_line_matching(plan.out, summary_line(cl, "deformed CL surface")));
+  CHECK(plan.err.empty()); // stderr is no terminal: no progress, and nothing to warn of
   const auto verify = run_process({bin, "verify", cage, cl, "--tool", "ball:6", "--scallop", "0.03",
                                    "--spacing", "0.3", "--svg", svg});
   CHECK(verify.exit_code == 0);
-  CHECK(verify.out.find("scallop max 0.03") != std::string::npos); // within 5 % of 0.03
+  CHECK(verified_max(verify.out) > 0.0);
+  CHECK(verified_max(verify.out) <= 1.05 * 0.03);
   CHECK(std::filesystem::file_size(svg) > 1000);
   // What plan writes, post reads: a 5-axis path for the grblHAL trunnion.
   const auto post =
@@ -49,11 +70,12 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
   const auto chosen = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.03",
                                    "--tolerance", "0.002", "--direction", "auto", "-o", cl});
   REQUIRE(chosen.exit_code == 0);
-  CHECK(chosen.out.find("  feed direction ") != std::string::npos);
-  CHECK(chosen.out.find(" deg, chosen by predicted cutting: 0 deg ") != std::string::npos);
-  CHECK(chosen.out.find(" mm, 45 deg ") != std::string::npos);
-  CHECK(chosen.out.find("  parallel passes kept by predicted cutting: rings ") !=
-        std::string::npos);
+  CHECK(has_line_matching(chosen.out,
+                          R"(  feed direction [0-9.]+ deg, chosen by predicted cutting: 0 deg \d+ )"
+                          R"(mm, 45 deg \d+ mm, 90 deg \d+ mm, 135 deg \d+ mm, [0-9.]+ deg \d+ )"
+                          R"(mm, [0-9.]+ deg \d+ mm(; solved in full: .*)?)"));
+  CHECK(has_line_matching(chosen.out, R"(  parallel passes kept by predicted cutting: rings \d+ )"
+                                      R"(mm against \d+ mm of parallel passes)"));
 }
 
 TEST_CASE("plan --direction concentric cuts rings about the dome's top", "[slow]") {
@@ -63,12 +85,16 @@ TEST_CASE("plan --direction concentric cuts rings about the dome's top", "[slow]
   const auto plan = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.03",
                                  "--tolerance", "0.002", "--direction", "concentric", "-o", cl});
   REQUIRE(plan.exit_code == 0);
-  CHECK(plan.out.find("(concentric rings)") != std::string::npos);
-  CHECK(plan.out.find("  concentric rings about (0.00, 0.00, ") != std::string::npos);
+  CHECK(has_line_matching(plan.out, summary_line(cl, "concentric rings")));
+  CHECK(has_line_matching(plan.out,
+                          R"(  concentric rings about \(0\.00, 0\.00, [0-9.]+\), \d )"
+                          R"(marches of the front; ring spacing up to [0-9.]+ of the )"
+                          R"(need(; passes inserted there down to 1/\d+ of a plane step)?)"));
   const auto verify = run_process(
       {bin, "verify", cage, cl, "--tool", "ball:6", "--scallop", "0.03", "--spacing", "0.3"});
   CHECK(verify.exit_code == 0);
-  CHECK(verify.out.find("scallop max 0.03") != std::string::npos); // within 5 % of 0.03
+  CHECK(verified_max(verify.out) > 0.0);
+  CHECK(verified_max(verify.out) <= 1.05 * 0.03);
 }
 
 TEST_CASE("plan shows its progress on a terminal and erases it before the summary", "[pty]") {
@@ -99,15 +125,26 @@ TEST_CASE("plan shows its progress on a terminal and erases it before the summar
     take(20ms);
   }
   CHECK(result.exit_code == 0);
-  CHECK(result.out.find("deformed CL surface") != std::string::npos);
+  CHECK(has_line_matching(result.out, summary_line(cl, "deformed CL surface")));
   INFO(shown);
-  CHECK(shown.find("\r\033[Kplanning 00:00  meshing the limit surface") != std::string::npos);
-  CHECK(shown.find("  deformation solve 1 (at most 60)") != std::string::npos);
-  CHECK(shown.find("%  plane 0 of ") != std::string::npos);
-  CHECK(shown.find(" ETA ") != std::string::npos);
-  const auto last = shown.rfind("planning ");
-  REQUIRE(last != std::string::npos);
-  CHECK(shown.find("\r\033[K", last) != std::string::npos); // erased after the last one
+  // Each frame erases the line and writes the stage; the last erases it for the summary.
+  const std::string erase = "\r\033[K";
+  REQUIRE(shown.starts_with(erase));
+  CHECK(shown.ends_with(erase));
+  std::vector<std::string> frames;
+  for (std::size_t at = 0; at < shown.size();) {
+    const auto next = shown.find(erase, at + erase.size());
+    frames.push_back(shown.substr(at + erase.size(), next - at - erase.size()));
+    at = next == std::string::npos ? shown.size() : next;
+  }
+  CHECK(frames.front() == "planning 00:00  meshing the limit surface");
+  const auto any_frame = [&](const std::string& pattern) {
+    return std::ranges::any_of(frames, [&](const std::string& f) {
+      return has_line_matching(f, R"(planning \d\d:\d\d  )" + pattern);
+    });
+  };
+  CHECK(any_frame(literal("deformation solve 1 (at most 60)")));
+  CHECK(any_frame(R"(\[[#.]+\] +\d+\.\d%  plane \d+ of \d+  ETA (\d\d:\d\d|--:--))"));
 }
 
 namespace {
@@ -141,31 +178,43 @@ TEST_CASE("plan warns of material left only where it is thicker than the scallop
     const auto plan = run_process({bin, "plan", source_dir + "/examples/" + part + ".obj", "--tool",
                                    "ball:6", "--scallop", "0.03", "-o", cl});
     REQUIRE(plan.exit_code == 0);
-    CHECK(plan.out.find("material left thicker than H (0.03 mm): none") != std::string::npos);
-    CHECK(plan.err.find("warning") == std::string::npos);
+    CHECK(has_line_matching(plan.out,
+                            literal("  material left thicker than H (0.03 mm): none") + "(; .*)?"));
+    CHECK(plan.err.empty());
   }
   // Not a hollow, but lifted at the boundary corners: the path's own balls pass nearer than
   // H there, so that is a note, not a warning.
   const auto dome = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6",
                                  "--scallop", "0.03", "-o", cl});
   REQUIRE(dome.exit_code == 0);
-  CHECK(dome.out.find("CL points lifted clear of the part leave at most 0.0") != std::string::npos);
-  CHECK(dome.err.find("warning") == std::string::npos);
+  CHECK(has_line_matching(dome.out, R"(  material left thicker than H \(0\.03 mm\): none(; \d+ )"
+                                    R"(surface vertices in hollows narrower than the ball keep at )"
+                                    R"(most 0\.0[0-2]\d+ mm)?; \d+ CL points lifted clear of the )"
+                                    R"(part leave at most 0\.0[0-2]\d+ mm)"));
+  CHECK(dome.err.empty());
   // z = r (x^2 + y^2) / 8 is 4 mm in radius at the bottom; a 5 mm ball rests on its walls
   // (5 - 4)^2 / 8 = 0.125 mm above it; the lifted points there keep one mesh tolerance more.
   const auto cage = dir.write("narrow.obj", narrow_bowl_obj(0.125)).string();
   const auto plan = run_process({bin, "plan", cage, "--tool", "ball:10", "--scallop", "0.1",
                                  "--tolerance", "0.005", "-o", cl});
   REQUIRE(plan.exit_code == 0);
-  CHECK(plan.err.find("is left in 1 place(s) the ball cannot follow") != std::string::npos);
-  const auto at = plan.err.find("near (0.00, 0.00,");
-  REQUIRE(at != std::string::npos);
-  const auto up_to = plan.err.find("up to ", at);
-  REQUIRE(up_to != std::string::npos);
-  const double shown = std::stod(plan.err.substr(up_to + 6));
+  const auto lines = split_lines(plan.err);
+  REQUIRE(lines.size() == 2);
+  const auto all =
+      line_captures(lines[0], R"(subfeed: warning:   material thicker than H \(0\.1 )"
+                              R"(mm\) is left in 1 place\(s\) the ball cannot follow, )"
+                              R"(up to ([0-9.]+) mm: finish them with a smaller ball)");
+  const auto one =
+      line_captures(lines[1], R"(subfeed: warning:     near \(0\.00, 0\.00, [0-9.]+\) )"
+                              R"(mm, over [0-9.]+ x [0-9.]+ x [0-9.]+ mm: up to )"
+                              R"(([0-9.]+) mm, a hollow narrower than the ball \(\d+ )"
+                              R"(surface vertices, \d+ CL points lifted clear\))");
+  REQUIRE(all.size() == 2);
+  REQUIRE(one.size() == 2);
+  CHECK(all[1] == one[1]);
+  const double shown = std::stod(one[1]);
   CHECK(shown >= 0.125 - 0.002);
   CHECK(shown <= 0.125 + 0.005 + 0.01);
-  CHECK(plan.err.find("a hollow narrower than the ball") != std::string::npos);
 }
 
 TEST_CASE("plan refuses a bad tool, scallop, direction, stay-down or cage in one line") {
@@ -177,8 +226,8 @@ TEST_CASE("plan refuses a bad tool, scallop, direction, stay-down or cage in one
                     "diameter D mm (0 < D <= 100)\n");
   const auto scallop = run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "3"});
   CHECK(scallop.exit_code == 1);
-  CHECK(scallop.err.find("--scallop: must be more than 0 and less than the ball radius") !=
-        std::string::npos);
+  CHECK(scallop.err ==
+        "subfeed: error: --scallop: must be more than 0 and less than the ball radius\n");
   const auto direction =
       run_process({bin, "plan", cage, "--tool", "ball:6", "--scallop", "0.01", "--direction", "z"});
   CHECK(direction.exit_code == 1);
@@ -224,9 +273,8 @@ TEST_CASE("verify writes a PNG, and refuses an unwritable one in one line withou
   const auto bad = run_process({bin, "verify", cage, cl.string(), "--tool", "ball:6", "--spacing",
                                 "2", "--png", missing.string()});
   CHECK(bad.exit_code == 2);
-  CHECK(bad.err.starts_with("subfeed: error: "));
-  CHECK(bad.err.find(missing.string()) != std::string::npos);
-  CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  CHECK(bad.err == "subfeed: error: " + missing.string() +
+                       ": cannot create output file: No such file or directory\n");
   CHECK_FALSE(std::filesystem::exists(missing));
 }
 
@@ -241,18 +289,22 @@ TEST_CASE("plan refused by the motion gate writes no CL file, names the line and
                    "0.05", "--refine", "2", "--gate-tolerance", "0.0001", "-o", cl});
   CHECK(plan.exit_code == 2);
   INFO(plan.err);
-  CHECK(plan.err.rfind("subfeed: error: " + cl + ":", 0) == 0);
-  CHECK(plan.err.find(": tool path refused: the cutting move from (") != std::string::npos);
-  CHECK(plan.err.find("mm into the part (tolerance 0.0001 mm) at (") != std::string::npos);
-  CHECK(plan.err.find("; nothing written\n") != std::string::npos);
-  CHECK(std::count(plan.err.begin(), plan.err.end(), '\n') == 1);
+  const std::string point = R"(\(-?[0-9.]+, -?[0-9.]+, -?[0-9.]+\))";
+  REQUIRE(split_lines(plan.err).size() == 1);
+  CHECK(has_line_matching(plan.err, "subfeed: error: " + literal(cl) +
+                                        R"(:\d+: tool path refused: the cutting move from )" +
+                                        point + " to " + point +
+                                        R"( cuts [0-9.]+ mm into the )"
+                                        R"(part \(tolerance 0\.0001 mm\) at )" +
+                                        point + "; nothing written"));
   CHECK_FALSE(std::filesystem::exists(cl));
   // At the default 1 um the same plan passes and says what was checked.
   const auto passed = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
                                    "ball:6", "--scallop", "0.05", "--refine", "2", "-o", cl});
   REQUIRE(passed.exit_code == 0);
-  CHECK(passed.out.find("checked against the part (its mesh within 0.25 um): no cut deeper than "
-                        "1 um, no rapid touching it") != std::string::npos);
+  CHECK(has_line_matching(passed.out, R"(  motion gate: \d+ moves \(\d+ rapids\) checked against )"
+                                      R"(the part \(its mesh within 0\.25 um\): no cut deeper )"
+                                      R"(than 1 um, no rapid touching it)"));
   CHECK(std::filesystem::exists(cl));
 }
 
@@ -263,8 +315,12 @@ TEST_CASE("verify tells a rapid through the part from cutting gouges", "[unit]")
   const auto verify = run_process(
       {bin, "verify", source_dir + "/examples/plane.obj", cl.string(), "--tool", "ball:6"});
   CHECK(verify.exit_code == 0);
-  CHECK(verify.out.find("\n  gouges 0 samples deeper than 0.1 um, deepest 0.000000 mm\n"
-                        "  links (plunges and retracts): none reach into the part\n"
-                        "  rapids: 3135 samples inside their sweep, deepest 1.000000 mm (near "
-                        "-10.000, 5.000, 0.000)\n") != std::string::npos);
+  const auto lines = split_lines(verify.out);
+  const auto gouges = std::ranges::find(lines, "  gouges 0 samples deeper than 0.1 um, deepest "
+                                               "0.000000 mm");
+  REQUIRE(gouges != lines.end());
+  REQUIRE(lines.end() - gouges >= 3);
+  CHECK(gouges[1] == "  links (plunges and retracts): none reach into the part");
+  CHECK(gouges[2] == "  rapids: 3135 samples inside their sweep, deepest 1.000000 mm (near "
+                     "-10.000, 5.000, 0.000)");
 }

@@ -3,6 +3,7 @@
 
 #include "drivers/gcode_line.hpp"
 #include "support/hand_made_cl.hpp"
+#include "support/output_lines.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 #include "support/text_file.hpp"
@@ -16,9 +17,13 @@
 #include <thread>
 
 using subfeed::testing::BackgroundProcess;
+using subfeed::testing::has_line;
+using subfeed::testing::has_line_matching;
 using subfeed::testing::lines_of;
+using subfeed::testing::literal;
 using subfeed::testing::read_text;
 using subfeed::testing::run_process;
+using subfeed::testing::split_lines;
 using namespace std::chrono_literals;
 
 namespace {
@@ -43,6 +48,24 @@ void wait_until_still(const std::string& path) {
   }
 }
 
+// The line where resume says where the program continues and why (GRBL).
+std::string resume_line(const std::string& journal, const std::string& why) {
+  return "resume " + literal(journal) + R"(: continue after line \d+ \()" + literal(why) +
+         R"(\); last sent \d+, last acknowledged \d+)";
+}
+
+// The dry run's verdict: every block executed as posted, and the replay's line with no
+// limit violation and no rotary jump ("controller" for GRBL, "control" for a Fanuc-style one).
+void check_dry_run_verdict(const std::string& out, const std::string& controller) {
+  CHECK(has_line_matching(out, "dry run: the simulated " + controller +
+                                   R"( executed (\d+) of \1 posted blocks, exactly as posted )"
+                                   R"(\(hash equal\))"));
+  CHECK(has_line_matching(out, R"(  replayed through the xyzac-trt kinematics: tool tip within )"
+                               R"([0-9.]+ mm of the CL path \(line \d+\) \(tolerance 0\.002 )"
+                               R"(mm\), tool axis within [0-9.]+ deg \(line \d+\); limit )"
+                               R"(violations 0, rotary jumps 0, blocks over an axis max feed 0)"));
+}
+
 std::vector<std::string> job(const std::string& base, const std::string& machine) {
   return {bin,      "run",       seat,   "--machine", machine, "--tool",
           "ball:6", "--scallop", "0.02", "-o",        base};
@@ -62,16 +85,15 @@ TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted,
   const auto r = run_process(argv);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
-  CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
-  CHECK(r.out.find("first block reached the controller") != std::string::npos);
-  CHECK(r.out.find(", the first move ") != std::string::npos);
+  check_dry_run_verdict(r.out, "controller");
+  CHECK(has_line_matching(r.out, R"(  first block reached the controller [0-9.]+ s after start, )"
+                                 R"(the first move [0-9.]+ s after start)"));
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK(std::filesystem::exists(base + ext));
   }
   const auto journal = read_text(base + ".journal");
-  CHECK(journal.find(" event job cage=") != std::string::npos);
-  CHECK(journal.find(" end done\n") != std::string::npos);
+  CHECK(has_line_matching(journal, R"(\d+ event job cage=)" + literal(seat) + " .*"));
+  CHECK(has_line_matching(split_lines(journal).back(), R"(\d+ end done)"));
 }
 
 TEST_CASE("run --sim on the seat for a Fanuc-style A/C trunnion by DNC drip feed",
@@ -83,9 +105,7 @@ TEST_CASE("run --sim on the seat for a Fanuc-style A/C trunnion by DNC drip feed
   const auto r = run_process(argv);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(r.out.find("the simulated control executed") != std::string::npos);
-  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
-  CHECK(r.out.find("limit violations 0, rotary jumps 0") != std::string::npos);
+  check_dry_run_verdict(r.out, "control");
 }
 
 namespace {
@@ -143,7 +163,9 @@ void kill_controller_mid_job(BackgroundProcess& first, const std::string& base,
   first.signal(SIGKILL);
   const auto failed = sender.wait();
   CHECK(failed.exit_code == 3);
-  CHECK(failed.err.find("subfeed resume") != std::string::npos);
+  CHECK(has_line_matching(failed.err, "subfeed: warning: the program is complete in " +
+                                          literal(base + ".nc") + ": `subfeed resume " +
+                                          literal(base + ".journal") + "` continues the job"));
   REQUIRE(std::filesystem::exists(base + ".nc"));
 }
 
@@ -179,7 +201,8 @@ TEST_CASE("subfeed killed mid-job: resume rebuilds the program and runs every li
   const auto resumed = run_process({bin, "resume", base + ".journal", "--port", port, "--yes"});
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
-  CHECK(resumed.out.find("(the machine stands at the end of that line)") != std::string::npos);
+  CHECK(has_line_matching(
+      resumed.out, resume_line(base + ".journal", "the machine stands at the end of that line")));
   require_exactly_once(program_lines(base + ".nc"), lines_of(log), 16, grbl_restart_block);
 }
 
@@ -217,7 +240,14 @@ TEST_CASE("a simulated controller killed mid-job: resume on a new one runs every
   const auto ran_second = lines_of(second_log);
   ran.insert(ran.end(), ran_second.begin(), ran_second.end());
   if (keeps_position) {
-    CHECK(resumed.out.find("may be cut again") == std::string::npos);
+    // The machine kept its position: found on a move, not "on no move ... may be cut again".
+    CHECK((has_line_matching(resumed.out,
+                             resume_line(base + ".journal", "the machine stands at the end of that "
+                                                            "line")) ||
+           has_line_matching(resumed.out,
+                             resume_line(base + ".journal", "the machine stopped inside the next "
+                                                            "line's move: it runs again from its "
+                                                            "start"))));
     require_exactly_once(program, ran, 16, grbl_restart_block);
     return;
   }
@@ -244,10 +274,12 @@ TEST_CASE("Ctrl-C during run stops the machine without an alarm and finishes the
   sender.signal(SIGINT);
   const auto r = sender.wait();
   CHECK(r.exit_code == 4);
-  CHECK(r.err.find("stopped by the user") != std::string::npos);
+  CHECK(
+      has_line_matching(r.err, "subfeed: error: " + literal(base + ".nc") +
+                                   R"(:\d+: stopped by the user; last line acknowledged: \d+.*)"));
   const auto journal = read_text(base + ".journal");
-  CHECK(journal.find("alarm") == std::string::npos);
-  CHECK(journal.find(" event hold") != std::string::npos);
+  CHECK_FALSE(has_line_matching(journal, R"(\d+ event alarm .*)"));
+  CHECK(has_line_matching(journal, R"(\d+ event hold .*)"));
   CHECK(std::filesystem::exists(base + ".nc"));
 }
 
@@ -260,8 +292,9 @@ TEST_CASE("run with a bad machine config names it and writes nothing", "[unit]")
   argv.insert(argv.end(), {"--sim"});
   const auto r = run_process(argv);
   CHECK(r.exit_code == 2);
-  CHECK(r.err.find(machine) != std::string::npos);
-  CHECK(r.err.find("kinematics") != std::string::npos);
+  CHECK(r.err == "subfeed: error: " + machine +
+                     ":3: machine.kinematics: 'warp-drive' is not one of xyz, xyzac-trt, "
+                     "xyzbc-trt, xyzac-head\n");
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK_FALSE(std::filesystem::exists(base + ext));
   }
@@ -289,15 +322,17 @@ TEST_CASE("resume refuses journals it cannot continue, in one line naming the jo
     const auto r = resume("0 start protocol=fanuc program=a.nc link=/dev/pts/9\n"
                           "5 sent line=1 bytes=4\n");
     CHECK(r.exit_code == 1);
-    CHECK(r.err.find("a DNC control reports no position: give the sequence number") !=
-          std::string::npos);
+    CHECK(r.err == "subfeed: error: " + journal +
+                       ": --block: a DNC control reports no position: give the sequence number "
+                       "it shows for the block it stopped in (--block N) or the program line "
+                       "(--from LINE)\n");
   }
   SECTION("a damaged job record") {
     const auto r = resume("0 start protocol=grbl program=a.nc link=/dev/pts/9\n"
                           "1 event job cage=seat.obj machine=m.toml output=seat tool=ball:6 "
                           "scallop=zero\n");
     CHECK(r.exit_code == 2);
-    CHECK(r.err.find(journal + ": job: job record without a valid 'scallop'") != std::string::npos);
+    CHECK(r.err == "subfeed: error: " + journal + ": job: job record without a valid 'scallop'\n");
   }
 }
 
@@ -315,15 +350,19 @@ TEST_CASE("run on existing CL data posts it as `post` does and streams it lazily
                               "--sim-speed", "1000", "--sim-baud", "0", "-o", base, "--json"});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(r.out.find("\"event\":\"job\"") != std::string::npos);
-  CHECK(r.out.find("exactly as posted (hash equal)") != std::string::npos);
+  CHECK(has_line_matching(r.out, R"(\{"event":"job","passes":\d+,"cl_points":\d+,"lines":\d+,)"
+                                 R"("cut_mm":[0-9.]+,"machine_min":[0-9.]+,"first_block_s":)"
+                                 R"([0-9.]+,"first_move_s":[0-9.]+,"streamed_s":[0-9.]+\})"));
+  CHECK(has_line_matching(r.out, R"(dry run: the simulated controller executed (\d+) of \1 posted )"
+                                 R"(blocks, exactly as posted \(hash equal\))"));
   CHECK_FALSE(std::filesystem::exists(base + ".cl")); // the input is the job's CL data
   CHECK(read_text(cl) == before);
   const std::string posted = (dir.path() / "posted.nc").string();
   REQUIRE(run_process({bin, "post", cl, "--machine", router, "-o", posted}).exit_code == 0);
   CHECK(read_text(base + ".nc") == read_text(posted));
   CHECK(read_text(base + ".nc.map") == read_text(posted + ".map"));
-  CHECK(read_text(base + ".journal").find("event job cage=" + cl) != std::string::npos);
+  CHECK(has_line_matching(read_text(base + ".journal"),
+                          R"(\d+ event job cage=)" + literal(cl) + " .*"));
 }
 
 TEST_CASE("run refuses CL data without its cage, and a rapid through the part before it is "
@@ -344,9 +383,14 @@ TEST_CASE("run refuses CL data without its cage, and a rapid through the part be
   const auto r = run_process({bin, "run", cl.string(), "--cage", plane, "--machine", router,
                               "--sim", "--sim-speed", "1000", "--sim-baud", "0", "-o", base});
   CHECK(r.exit_code == 2);
-  CHECK(r.err.find(cl.string() + ":16: tool path refused: the rapid from (10.0000, 0.0000, "
-                                 "2.0000) to (-10.0000, 5.0000, -1.0000) touches the part") !=
-        std::string::npos);
+  // The machine is held at once: the report says what it had acknowledged when it stopped.
+  REQUIRE(split_lines(r.err).size() == 1);
+  CHECK(has_line_matching(
+      r.err, literal("subfeed: error: " + cl.string() +
+                     ":16: tool path refused: the rapid from (10.0000, 0.0000, 2.0000) to "
+                     "(-10.0000, 5.0000, -1.0000) touches the part (the ball 1.0000 mm deep) at "
+                     "(-10.0000, 5.0000, 0.0000); last line acknowledged: ") +
+                 R"(\d+(; \d+ line\(s\) sent but not run \(lines [0-9, -]+\))?)"));
   CHECK_FALSE(std::filesystem::exists(base + ".nc"));
   // Nothing of the refused rapid reached the controller: every block sent serves a CL line
   // before it (by the trace map of the same path posted up to it).
@@ -442,11 +486,14 @@ TEST_CASE("a Fanuc-style control killed mid-job: resume by the block it shows ru
   REQUIRE(resumed.exit_code == 0);
   // Inside a block when killed, or (a loaded machine whose planner fell behind) idle with
   // every block it was sent finished: either way the next block runs from its start.
+  const auto dnc_line = [&](const std::string& why) {
+    return "resume " + literal(base + ".journal") + R"(: continue after line \d+ \()" +
+           literal(why) + R"(\); last sent \d+)";
+  };
   const bool inside =
-      resumed.out.find("block N" + block + " runs again from its start") != std::string::npos;
-  const bool next = resumed.out.find("block N" + block +
-                                     ", the first not sent, runs from its "
-                                     "start") != std::string::npos;
+      has_line_matching(resumed.out, dnc_line("block N" + block + " runs again from its start"));
+  const bool next = has_line_matching(
+      resumed.out, dnc_line("block N" + block + ", the first not sent, runs from its start"));
   CHECK((inside || next));
   wait_until_still(second_log); // DNC has no acknowledgements: the control is still moving
   auto ran = ran_first;
@@ -494,10 +541,15 @@ TEST_CASE("resume after subfeed died with the planner full: a controller that go
   INFO(resumed.out << resumed.err);
   REQUIRE(resumed.exit_code == 0);
   if (grblhal) {
-    CHECK(resumed.out.find("the machine is still moving (Run)") != std::string::npos);
-    CHECK(resumed.out.find("(the machine stands at the end of that line)") != std::string::npos);
+    CHECK(has_line(resumed.out, "the machine is still moving (Run): waiting for it to stop"));
+    CHECK(
+        has_line_matching(resumed.out, resume_line(program + ".journal",
+                                                   "the machine stands at the end of that line")));
   } else {
-    CHECK(resumed.out.find("stopped inside the next line's move") != std::string::npos);
+    CHECK(has_line_matching(resumed.out,
+                            resume_line(program + ".journal",
+                                        "the machine stopped inside the next line's move: it "
+                                        "runs again from its start")));
   }
   require_exactly_once(program_lines(program), lines_of(log), 16, grbl_restart_block);
 }

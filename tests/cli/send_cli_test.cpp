@@ -1,6 +1,7 @@
 // `subfeed send` and `subfeed-sim` as a user runs them, over real ptys.
 
 #include "sim/pty.hpp"
+#include "support/output_lines.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 #include "support/text_file.hpp"
@@ -12,7 +13,11 @@
 #include <thread>
 
 using subfeed::testing::BackgroundProcess;
+using subfeed::testing::has_line;
+using subfeed::testing::has_line_matching;
+using subfeed::testing::literal;
 using subfeed::testing::run_process;
+using subfeed::testing::split_lines;
 using namespace std::chrono_literals;
 
 namespace {
@@ -29,6 +34,18 @@ std::string moves(int count, int feed) {
   return p;
 }
 
+// The simulated GRBL controller's account on SIGTERM, with the counts a test pins down.
+std::string grbl_account(const std::string& alarms_resets_holds) {
+  return R"(subfeed-sim: \d+ lines executed, \d+ refused, \d+ dropped unread, 0 bytes overrun, )"
+         R"(0 EEPROM violations, )" +
+         alarms_resets_holds + R"(, \d+ overrides, \d+ planner starvations, state Idle)";
+}
+
+// A journal line: milliseconds since the start, then the record.
+std::string journal_line(const std::string& record_pattern) {
+  return R"(\d+ )" + record_pattern;
+}
+
 } // namespace
 
 TEST_CASE("send --sim streams a file and summarises", "[pty]") {
@@ -37,8 +54,9 @@ TEST_CASE("send --sim streams a file and summarises", "[pty]") {
   const auto r = run_process({bin, "send", job.string(), "--sim", "grbl", "--sim-speed", "1000"});
   CHECK(r.err.empty());
   CHECK(r.exit_code == 0);
-  CHECK(r.out.starts_with("done: 202 lines, "));
-  CHECK(r.out.find("link use") != std::string::npos);
+  REQUIRE(split_lines(r.out).size() == 1);
+  CHECK(has_line_matching(r.out, R"(done: 202 lines, 1[0-9]{3} bytes in \d+\.\d\d s \(\d+ )"
+                                 R"(bytes/s, link use \d+\.\d% of 115200 baud\))"));
 }
 
 TEST_CASE("send --json prints one event per line", "[pty]") {
@@ -47,11 +65,15 @@ TEST_CASE("send --json prints one event per line", "[pty]") {
   const auto r =
       run_process({bin, "send", job.string(), "--sim", "grblhal", "--sim-speed", "1000", "--json"});
   CHECK(r.exit_code == 0);
-  const auto connected = r.out.find("{\"event\":\"connected\",\"grblhal\":true,");
-  CHECK(connected != std::string::npos);
-  CHECK(connected < r.out.find("{\"event\":\"done\""));
-  CHECK(r.out.find("{\"event\":\"phase\",\"name\":\"stream\"}\n") != std::string::npos);
-  CHECK(r.out.find("{\"event\":\"done\",\"lines\":52,") != std::string::npos);
+  const auto lines = split_lines(r.out);
+  for (const auto& line : lines) {
+    CHECK(has_line_matching(line, R"(\{"event":"[a-z_]+"(,"[a-z_]+":.*)?\})")); // one object
+  }
+  CHECK(has_line_matching(r.out, R"(\{"event":"connected","grblhal":true,.*\})"));
+  CHECK(has_line(r.out, R"({"event":"phase","name":"stream"})"));
+  REQUIRE_FALSE(lines.empty());
+  CHECK(has_line_matching(lines.back(), R"(\{"event":"done","lines":52,"bytes":\d+,"seconds":)"
+                                        R"([0-9.]+,"bytes_per_s":[0-9.]+,"errors":0\})"));
 }
 
 TEST_CASE("send with a machine config takes its settings, a contradicting simulator is refused",
@@ -81,7 +103,8 @@ TEST_CASE("send refuses bad command lines and bad files with the right exit code
   const auto missing =
       run_process({bin, "send", (dir.path() / "nope.nc").string(), "--sim", "grbl"});
   CHECK(missing.exit_code == 2);
-  CHECK(missing.err.find("nope.nc: cannot open G-code file") != std::string::npos);
+  CHECK(missing.err ==
+        "subfeed: error: " + (dir.path() / "nope.nc").string() + ": cannot open G-code file\n");
   const auto bad = dir.write("bad.nc", "G1 X1 F100\nG1 X2 (why?)\n");
   const auto realtime = run_process({bin, "send", bad.string(), "--sim", "grbl"});
   CHECK(realtime.exit_code == 2);
@@ -89,9 +112,9 @@ TEST_CASE("send refuses bad command lines and bad files with the right exit code
                             ":2: '?' would act as a realtime command on the controller\n");
   const auto no_port = run_process({bin, "send", job.string(), "--port", "/dev/nonexistent-tty"});
   CHECK(no_port.exit_code == 3);
-  CHECK(
-      no_port.err.find("/dev/nonexistent-tty: cannot open serial port: No such file or directory; "
-                       "serial ports here: ") != std::string::npos);
+  CHECK(has_line_matching(no_port.err,
+                          R"(subfeed: error: /dev/nonexistent-tty: cannot open serial )"
+                          R"(port: No such file or directory; serial ports here: .+)"));
   const auto ports = run_process({bin, "ports"});
   CHECK(ports.exit_code == 0);
   CHECK_FALSE(ports.out.empty());
@@ -105,22 +128,24 @@ TEST_CASE("subfeed-sim serves a pty that send --port streams to, an error:N exit
   REQUIRE(port.starts_with("/dev/pts/"));
   const auto r = run_process({bin, "send", job.string(), "--port", port});
   CHECK(r.exit_code == 3);
-  CHECK(r.err.find("job.nc:40: controller error:20 (unsupported or invalid G-code command found in "
-                   "block)") != std::string::npos);
+  const std::string failure =
+      literal(job.string() + ":40: controller error:20 (unsupported or invalid G-code command "
+                             "found in block); last line acknowledged: ") +
+      R"(\d+(; \d+ line\(s\) sent but not run \(lines [0-9, -]+\))?)";
+  REQUIRE(split_lines(r.err).size() == 1);
+  CHECK(has_line_matching(r.err, "subfeed: error: " + failure));
   const std::string journal = subfeed::testing::read_text(job.string() + ".journal");
-  CHECK(journal.find(" start protocol=grbl program=" + job.string() + " link=" + port + "\n") !=
-        std::string::npos);
-  CHECK(journal.find(" answered line=39 ok\n") != std::string::npos);
-  CHECK(journal.find(" answered line=40 error:20\n") != std::string::npos);
-  CHECK(journal.find(" event hold stopping the machine\n") != std::string::npos);
-  CHECK(journal.find(" event reset soft reset after Hold:0\n") != std::string::npos);
-  CHECK(journal.find(" end failed " + job.string() + ":40: controller error:20") !=
-        std::string::npos);
+  CHECK(has_line_matching(journal, journal_line(literal("start protocol=grbl program=" +
+                                                        job.string() + " link=" + port))));
+  CHECK(has_line_matching(journal, journal_line("answered line=39 ok")));
+  CHECK(has_line_matching(journal, journal_line("answered line=40 error:20")));
+  CHECK(has_line_matching(journal, journal_line("event hold stopping the machine")));
+  CHECK(has_line_matching(journal, journal_line("event reset soft reset after Hold:0")));
+  CHECK(has_line_matching(split_lines(journal).back(), journal_line("end failed " + failure)));
   sim.signal(SIGTERM);
   const auto served = sim.wait();
   CHECK(served.exit_code == 0);
-  CHECK(served.err.find(" 0 bytes overrun, 0 EEPROM violations, 0 alarms, 1 resets") !=
-        std::string::npos);
+  CHECK(has_line_matching(served.err, grbl_account(R"(0 alarms, 1 resets, \d+ feed holds)")));
 }
 
 TEST_CASE("Ctrl-C stops the machine safely and exits 4", "[pty]") {
@@ -133,11 +158,13 @@ TEST_CASE("Ctrl-C stops the machine safely and exits 4", "[pty]") {
   sender.signal(SIGINT);
   const auto sent = sender.wait();
   CHECK(sent.exit_code == 4);
-  CHECK(sent.err.find("stopped by the user; last line acknowledged: ") != std::string::npos);
+  CHECK(has_line_matching(sent.err,
+                          literal("subfeed: error: " + job.string() + ":") +
+                              R"(\d+: stopped by the user; last line acknowledged: \d+)"
+                              R"((; \d+ line\(s\) sent but not run \(lines [0-9, -]+\))?)"));
   sim.signal(SIGTERM);
   const auto served = sim.wait();
-  CHECK(served.err.find("0 alarms, 1 resets, ") != std::string::npos);
-  CHECK(served.err.find("state Idle") != std::string::npos);
+  CHECK(has_line_matching(served.err, grbl_account("0 alarms, 1 resets, 1 feed holds")));
 }
 
 TEST_CASE("subfeed-sim serves TCP for send --tcp", "[pty]") {
@@ -148,7 +175,7 @@ TEST_CASE("subfeed-sim serves TCP for send --tcp", "[pty]") {
   REQUIRE(address.starts_with("127.0.0.1:"));
   const auto r = run_process({bin, "send", job.string(), "--tcp", address});
   CHECK(r.exit_code == 0);
-  CHECK(r.out.starts_with("done: 52 lines"));
+  CHECK(has_line_matching(r.out, R"(done: 52 lines, \d+ bytes in \d+\.\d\d s \(\d+ bytes/s\))"));
 }
 
 TEST_CASE("a reader that closes the JSON pipe early does not kill the job", "[pty]") {
@@ -177,8 +204,10 @@ TEST_CASE("keys on the terminal reach the controller as realtime commands", "[pt
   sim.signal(SIGTERM);
   const auto served = sim.wait();
   INFO("sender: " << sent.err << " / sim: " << served.err);
-  CHECK(served.err.find("3 overrides") != std::string::npos);
-  CHECK(served.err.find("0 alarms, 1 resets, 1 feed holds") != std::string::npos);
+  CHECK(has_line_matching(served.err,
+                          R"(subfeed-sim: \d+ lines executed, \d+ refused, \d+ dropped unread, )"
+                          R"(0 bytes overrun, 0 EEPROM violations, 0 alarms, 1 resets, 1 feed )"
+                          R"(holds, 3 overrides, \d+ planner starvations, state Idle)"));
 }
 
 TEST_CASE("send --sim fanuc drip-feeds a program", "[pty]") {
@@ -186,7 +215,8 @@ TEST_CASE("send --sim fanuc drip-feeds a program", "[pty]") {
   const auto job = dir.write("job.nc", "G21 G90 G17\nG01 F600\nX1.0 Y2.0\nX3.0\n");
   const auto r = run_process({bin, "send", job.string(), "--sim", "fanuc", "--sim-speed", "100"});
   CHECK(r.exit_code == 0);
-  CHECK(r.out.starts_with("done: 7 lines, 46 bytes"));
+  CHECK(has_line_matching(r.out, R"(done: 7 lines, 46 bytes in \d+\.\d\d s \(\d+ bytes/s, )"
+                                 R"(link use \d+\.\d% of 9600 baud\))"));
   const auto bad = dir.write("bad.nc", "G21\nG01 X1.0 F600, (COMMA)\n");
   const auto refused = run_process({bin, "send", bad.string(), "--sim", "fanuc"});
   CHECK(refused.exit_code == 2);
@@ -206,8 +236,8 @@ TEST_CASE("send --protocol fanuc takes the machine's framing and O-number", "[pt
   std::this_thread::sleep_for(200ms);
   control.signal(SIGTERM);
   const auto served = control.wait();
-  CHECK(served.err.find("3 blocks executed, program 1234,") != std::string::npos);
-  CHECK(served.err.find("alarm none") != std::string::npos);
+  CHECK(has_line_matching(served.err, R"(subfeed-sim: 3 blocks executed, program 1234, \d+ XOFF, )"
+                                      R"(\d+ XON, at most \d+ characters after XOFF, alarm none)"));
 }
 
 TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[pty]") {
@@ -222,19 +252,23 @@ TEST_CASE("a control that holds the tape too long ends the job with exit 3", "[p
   const auto r = run_process(
       {bin, "send", job.string(), "--protocol", "fanuc", "--port", port, "--xoff-timeout", "0.5"});
   CHECK(r.exit_code == 3);
-  CHECK(r.err.find("the control has held the tape (XOFF) for 500 ms; last block sent: line ") !=
-        std::string::npos);
+  const std::string failure = literal(job.string()) + R"(:(\d+): the control has held the tape )"
+                                                      R"(\(XOFF\) for 500 ms; last block sent: )"
+                                                      R"(line \1)";
+  CHECK(has_line_matching(r.err, "subfeed: error: " + failure));
   const std::string journal = subfeed::testing::read_text(job.string() + ".journal");
-  CHECK(journal.find(" start protocol=fanuc ") != std::string::npos);
-  CHECK(journal.find(" event xoff\n") != std::string::npos);
-  CHECK(journal.find(" end failed ") != std::string::npos);
+  CHECK(has_line_matching(journal, journal_line(literal("start protocol=fanuc program=" +
+                                                        job.string() + " link=" + port))));
+  CHECK(has_line_matching(journal, journal_line("event xoff")));
+  CHECK(has_line_matching(split_lines(journal).back(), journal_line("end failed " + failure)));
 }
 
 TEST_CASE("subfeed-sim fanuc refuses a negative link latency in one line", "[unit]") {
   const auto r = run_process({sim_bin, "fanuc", "--link-latency", "-5"});
   CHECK(r.exit_code == 1);
   CHECK(r.out.empty()); // no pty offered
-  CHECK(r.err.starts_with("subfeed-sim: usage: --link-latency: Value -5 not in range 0 to 60000"));
+  CHECK(r.err == "subfeed-sim: usage: --link-latency: Value -5 not in range 0 to 60000 (see "
+                 "subfeed-sim --help)\n");
 }
 
 TEST_CASE("a journal that cannot be written stops the job before it starts", "[pty]") {

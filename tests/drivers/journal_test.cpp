@@ -42,7 +42,8 @@ TEST_CASE("journal: one event a line, in the documented form, read back by the r
   CHECK(record(4) == "answered line=1 ok");
   CHECK(record(6) == "answered line=2 error:20");
   CHECK(record(7) == "event alarm ALARM:1");
-  CHECK(record(8) == "end failed " + fail(ErrorCode::machine_fault, "controller alarm").error().describe());
+  CHECK(record(8) ==
+        "end failed " + fail(ErrorCode::machine_fault, "controller alarm").error().describe());
 
   const auto s = read_journal(path).value();
   CHECK(s.protocol == "grbl");

@@ -24,8 +24,7 @@ std::vector<std::string> texts(std::string_view line) {
 } // namespace
 
 TEST_CASE("words: letters upper-cased, numbers as written, blanks and comments dropped") {
-  CHECK(texts("G01 X1.5 Y-2. Z+.25") ==
-        std::vector<std::string>{"G01", "X1.5", "Y-2.", "Z+.25"});
+  CHECK(texts("G01 X1.5 Y-2. Z+.25") == std::vector<std::string>{"G01", "X1.5", "Y-2.", "Z+.25"});
   CHECK(texts("g1x1y2") == std::vector<std::string>{"G1", "X1", "Y2"});
   CHECK(texts("N10 G1 (MOVE X9) X3 ; Y7 after the end of block") ==
         std::vector<std::string>{"N10", "G1", "X3"});
@@ -73,8 +72,8 @@ TEST_CASE("modal state: the later word of a group wins, as written") {
   REQUIRE(modal.apply("G93 G01 X1 F250.5"));
   REQUIRE(modal.apply("G56 G02 X2 Y2 I1 J0 F300."));
   CHECK(modal.restore_blocks({}).value() ==
-        std::vector<std::string>{"G21 G17 G90 G93 G56", "T3 M06", "G43.4 H3", "S12000 M03",
-                                 "M08", "G02 F300."});
+        std::vector<std::string>{"G21 G17 G90 G93 G56", "T3 M06", "G43.4 H3", "S12000 M03", "M08",
+                                 "G02 F300."});
   REQUIRE(modal.apply("G49"));
   CHECK(modal.restore_blocks({}).value()[2] == "G49");
 }
@@ -100,4 +99,14 @@ TEST_CASE("modal state: a block that is not words is an error naming where") {
   CHECK(bad.error().where.file == "job.nc");
   CHECK(bad.error().where.line == 7);
   CHECK(bad.error().message == "comment not closed");
+}
+
+TEST_CASE("strip: the line as a controller reads it, an open comment told") {
+  CHECK(strip("g1 x1.5 (a comment) y2 ; the rest").text == "G1X1.5Y2");
+  CHECK_FALSE(strip("G1 X1").open_comment);
+  const auto open = strip("G1 X1 (never closed Y2");
+  CHECK(open.text == "G1X1");
+  CHECK(open.open_comment);
+  CHECK(strip("%").text == "%"); // the sender decides what a '%' line is
+  CHECK(strip("$H").text == "$H");
 }

@@ -1,9 +1,9 @@
 // Where a resume restarts and how it gets there, on small programs with known answers.
 
-#include "post/kinematics.hpp"
-#include "post/machine_config.hpp"
 #include "job/restart_approach.hpp"
 #include "job/restart_point.hpp"
+#include "post/kinematics.hpp"
+#include "post/machine_config.hpp"
 #include "support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>

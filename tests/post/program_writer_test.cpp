@@ -28,8 +28,10 @@ void compare_golden(const std::string& config, const std::string& golden,
   TempDir dir;
   const auto out = dir.path() / "out.nc";
   REQUIRE(post::post_file(source + "/tests/post/golden/tilt.cl", *machine, options, out));
-  CHECK(subfeed::testing::read_text(out) == subfeed::testing::read_text(source + "/tests/post/golden/" + golden));
-  CHECK(subfeed::testing::read_text(post::map_path_for(out)) == subfeed::testing::read_text(source + "/tests/post/golden/" + golden + ".map"));
+  CHECK(subfeed::testing::read_text(out) ==
+        subfeed::testing::read_text(source + "/tests/post/golden/" + golden));
+  CHECK(subfeed::testing::read_text(post::map_path_for(out)) ==
+        subfeed::testing::read_text(source + "/tests/post/golden/" + golden + ".map"));
 }
 
 } // namespace

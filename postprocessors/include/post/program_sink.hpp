@@ -47,7 +47,7 @@ struct PostFileSummary {
 [[nodiscard]] std::filesystem::path map_path_for(const std::filesystem::path& program);
 
 struct ProgramTaps {
-  std::function<void(const MotionBlock&)> block; // each block, before it is written
+  std::function<void(const MotionBlock&)> block;   // each block, before it is written
   std::function<void(std::string_view line)> line; // each line, once it is written
 };
 

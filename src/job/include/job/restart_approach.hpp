@@ -9,8 +9,8 @@
 // plunge along the tool axis to it.
 
 #include "base/error.hpp"
-#include "post/machine_config.hpp"
 #include "job/restart_point.hpp"
+#include "post/machine_config.hpp"
 
 #include <optional>
 #include <string>

@@ -30,11 +30,11 @@ namespace subfeed::job {
 
 struct ResumeRequest {
   std::string journal;
-  std::string machine; // empty: the job's
-  long from = 0;       // program line to continue from; 0: found
-  long block = -1;     // DNC: the sequence number the control shows
-  std::string at;      // DNC: the machine position the control shows, "X,Y,Z,..."
-  double clearance = 0.0; // mm; 0: the job's clearance, else the machine's retract
+  std::string machine;      // empty: the job's
+  long from = 0;            // program line to continue from; 0: found
+  long block = -1;          // DNC: the sequence number the control shows
+  std::string at;           // DNC: the machine position the control shows, "X,Y,Z,..."
+  double clearance = 0.0;   // mm; 0: the job's clearance, else the machine's retract
   double plunge_feed = 0.0; // mm/min; 0: the job's
   double connect_timeout_s = 5.0;
 };

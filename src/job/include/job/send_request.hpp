@@ -26,7 +26,7 @@ struct SendRequest {
   int baud = 0; // 0: from the machine config, else 115200
   double connect_timeout_s = 5.0;
   double sim_speed = 1.0;
-  int sim_baud = -1; // -1: the link's baud
+  int sim_baud = -1;    // -1: the link's baud
   std::string protocol; // grbl or fanuc; default from --sim, --machine, else grbl
   std::string data_bits, parity, stop_bits, flow; // framing flags (empty: config or default)
   drivers::GrblStreamOptions stream;
@@ -46,11 +46,9 @@ struct SendRequest {
 
 // Streams the file over `link` by the settled protocol (`source`, opened by the caller
 // before the link so that a missing file is told first, is the GRBL stream's).
-[[nodiscard]] Expected<drivers::StreamSummary> stream_file(SendRequest& request,
-                                                           const drivers::SerialOptions& serial,
-                                                           drivers::GcodeSource& source,
-                                                           drivers::Transport& link,
-                                                           drivers::ControlInbox* inbox,
-                                                           drivers::StreamObserver& observer);
+[[nodiscard]] Expected<drivers::StreamSummary>
+stream_file(SendRequest& request, const drivers::SerialOptions& serial,
+            drivers::GcodeSource& source, drivers::Transport& link, drivers::ControlInbox* inbox,
+            drivers::StreamObserver& observer);
 
 } // namespace subfeed::job

@@ -1,0 +1,92 @@
+#include "geometry/verify_picture.hpp"
+
+#include "support/png_reader.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace subfeed;
+using namespace subfeed::geometry;
+
+namespace {
+
+// A 20 x 10 mm part whose scallop grows from 0 at x = 0 to 0.0123 mm at x = 20, one pass
+// along y = 5: a 240-cell map is 723 x 363 pixels (3 a cell), 1/12 mm a cell.
+VerifyPicture ramp() {
+  VerifyPicture p;
+  for (int i = 0; i <= 200; ++i) {
+    for (int j = 0; j <= 100; ++j) {
+      p.points.emplace_back(i * 0.1, j * 0.1, 0.0);
+      p.heights.push_back(0.0123 * i / 200.0);
+      p.gouged.push_back(0);
+    }
+  }
+  p.max_height = 0.0123;
+  p.name = "part.obj";
+  p.target = 0.01;
+  p.passes_xy.push_back({{0.0, 5.0}, {20.0, 5.0}});
+  return p;
+}
+
+bool is(const RgbImage& image, int x, int y, std::array<int, 3> rgb) {
+  const auto at = static_cast<std::size_t>((y * image.width + x) * 3);
+  return image.rgb[at] == rgb[0] && image.rgb[at + 1] == rgb[1] && image.rgb[at + 2] == rgb[2];
+}
+
+// The longest horizontal run of black pixels in rows [top, bottom).
+int longest_black_run(const RgbImage& image, int top, int bottom) {
+  int best = 0;
+  for (int y = top; y < bottom; ++y) {
+    int run = 0;
+    for (int x = 0; x < image.width; ++x) {
+      run = is(image, x, y, {0, 0, 0}) ? run + 1 : 0;
+      best = std::max(best, run);
+    }
+  }
+  return best;
+}
+
+} // namespace
+
+TEST_CASE("verify picture, SVG: the title names the part, H and the max, the colour bar has "
+          "ticks in mm, the scale bar a round length") {
+  const testing::TempDir dir;
+  const auto file = dir.path() / "p.svg";
+  REQUIRE(write_svg(file, ramp()));
+  const auto svg = testing::read_text(file);
+  CHECK(svg.find(">part.obj   H 0.01 mm   max 0.0123 mm</text>") != std::string::npos);
+  CHECK(svg.find(">scallop, mm</text>") != std::string::npos);
+  for (const char* tick : {">0</text>", ">0.00308</text>", ">0.00615</text>", ">0.00923</text>",
+                           ">0.0123</text>", ">gouge</text>"}) {
+    CHECK(svg.find(tick) != std::string::npos);
+  }
+  CHECK(svg.find(R"(width="180" height="4" fill="#000"/>)") != std::string::npos); // 5 mm
+  CHECK(svg.find(">5 mm</text>") != std::string::npos);
+}
+
+TEST_CASE("verify picture, PNG: title, colour bar from blue to red, and a scale bar of 5 mm") {
+  const testing::TempDir dir;
+  const auto file = dir.path() / "p.png";
+  REQUIRE(write_png(file, ramp()));
+  const auto image = testing::read_png(file);
+  constexpr int map_right = 8 + 723, map_bottom = 30 + 363;
+  CHECK(image.width > map_right + 100);  // the legend beside the map
+  CHECK(image.height > map_bottom + 20); // the scale bar below it
+  int title = 0;
+  for (int y = 0; y < 30; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      title += is(image, x, y, {0, 0, 0}) ? 1 : 0;
+    }
+  }
+  CHECK(title > 300); // "PART.OBJ   H 0.01 MM   MAX 0.0123 MM" at 2 pixels a font pixel
+  bool red = false, blue = false;
+  for (int y = 30; y < map_bottom; ++y) {
+    red = red || is(image, map_right + 20, y, {255, 0, 0});
+    blue = blue || is(image, map_right + 20, y, {0, 80, 255});
+  }
+  CHECK(red);
+  CHECK(blue);
+  // 5 mm at 1/12 mm a cell and 3 pixels a cell.
+  CHECK(longest_black_run(image, map_bottom, image.height) == 180);
+}
