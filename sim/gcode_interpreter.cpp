@@ -1,5 +1,7 @@
 #include "sim/gcode_interpreter.hpp"
 
+#include "grbl_codes.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <optional>
@@ -9,15 +11,7 @@ namespace subfeed::sim {
 
 namespace {
 
-// GRBL 1.1 error codes used here.
-constexpr int expected_command_letter = 1;
-constexpr int bad_number_format = 2;
-constexpr int unsupported_command = 20;
-constexpr int modal_group_violation = 21;
-constexpr int undefined_feed_rate = 22;
-constexpr int command_not_integer = 23;
-constexpr int word_repeated = 25;
-constexpr int invalid_target = 33;
+using namespace grbl_code;
 
 struct Word {
   char letter;

@@ -1,5 +1,7 @@
 #include "sim/grbl_sim.hpp"
 
+#include "grbl_codes.hpp"
+
 #include "sim/delivery_hash.hpp"
 
 #include <algorithm>
@@ -17,18 +19,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// GRBL 1.1 realtime bytes and codes (documented protocol constants, kept apart from the
+// GRBL 1.1 realtime bytes (documented protocol constants, kept apart from the
 // sender's on purpose).
 constexpr unsigned char rt_status = '?';
 constexpr unsigned char rt_hold = '!';
 constexpr unsigned char rt_resume = '~';
 constexpr unsigned char rt_reset = 0x18;
-constexpr int error_invalid_statement = 3;
-constexpr int error_homing_disabled = 5;
-constexpr int error_not_idle = 8;
-constexpr int error_locked = 9;
-constexpr int error_line_overflow = 11;
-constexpr int alarm_reset_in_motion = 3;
 
 std::string strip_line(std::string_view raw) {
   std::string out;
@@ -309,7 +305,7 @@ private:
     if (moving()) {
       alarm_locked_ = true; // steps were lost: the position can no longer be trusted
       ++stats_.alarms_sent;
-      send("ALARM:" + std::to_string(alarm_reset_in_motion));
+      send("ALARM:" + std::to_string(grbl_code::alarm_reset_in_motion));
     }
     outgoing_.clear();
     wire_out_.clear();
@@ -394,7 +390,7 @@ private:
     }
     if (static_cast<int>(line.size()) > options_.line_limit) {
       count_program_line(line);
-      refuse(line, error_line_overflow);
+      refuse(line, grbl_code::line_overflow);
       return;
     }
     if (line[0] == '$') {
@@ -444,7 +440,7 @@ private:
       send(std::string("\xfe\xff#@!") + '\x07' + "~~");
     }
     if (alarm_locked_) {
-      refuse(line, error_locked);
+      refuse(line, grbl_code::locked);
       return;
     }
     if (latched_error_ != 0) {
@@ -497,10 +493,10 @@ private:
 
   void execute_system(const std::string& line) {
     if (line == "$$") {
-      return idle_or_alarm() ? dump_settings() : reply_error(error_not_idle);
+      return idle_or_alarm() ? dump_settings() : reply_error(grbl_code::not_idle);
     }
     if (line == "$I") {
-      return idle_or_alarm() ? build_info() : reply_error(error_not_idle);
+      return idle_or_alarm() ? build_info() : reply_error(grbl_code::not_idle);
     }
     if (line == "$C") {
       return toggle_check_mode();
@@ -515,7 +511,7 @@ private:
       return reply_ok();
     }
     if (line == "$H") {
-      return reply_error(settings_[22] == "0" ? error_homing_disabled : 0);
+      return reply_error(settings_[22] == "0" ? grbl_code::homing_disabled : 0);
     }
     if (line == "$#") {
       send("[G54:0.000,0.000,0.000]");
@@ -533,7 +529,8 @@ private:
   void write_setting(const std::string& line) {
     const auto eq = line.find('=');
     if (eq == std::string::npos || !idle_or_alarm()) {
-      return reply_error(eq == std::string::npos ? error_invalid_statement : error_not_idle);
+      return reply_error(eq == std::string::npos ? grbl_code::invalid_statement
+                                                 : grbl_code::not_idle);
     }
     const std::string key = line.substr(1, eq - 1);
     eeprom_write();
@@ -542,7 +539,7 @@ private:
     }
     int number = 0;
     if (std::sscanf(key.c_str(), "%d", &number) != 1 || !settings_.contains(number)) {
-      return reply_error(error_invalid_statement);
+      return reply_error(grbl_code::invalid_statement);
     }
     settings_[number] = line.substr(eq + 1);
     reply_ok();
@@ -582,7 +579,7 @@ private:
       return;
     }
     if (!idle_or_alarm() || alarm_locked_) {
-      return reply_error(error_not_idle);
+      return reply_error(grbl_code::not_idle);
     }
     check_mode_ = true;
     send("[MSG:Enabled]");

@@ -210,6 +210,165 @@ void count_touch(double depth, const Eigen::Vector3d& p, MoveTouches& touches) {
   }
 }
 
+// One measured sample of the surface, with what the report and the picture need of it.
+struct Measured {
+  Sample sample;         // where, and the scallop first measured there
+  Eigen::Vector3d point; // on the surface, mm
+  char marked = 0;       // cut more than 1 um below: black in the picture
+  double weight = 0.0;   // its share of the surface's area, mm^2
+  double radius = 0.0;   // of normal curvature across the nearest pass, for L*
+  double height = 0.0;   // the scallop shown: refined near the worst
+};
+
+// The grids the samples are measured against, built once.
+struct Sweeps {
+  CapsuleGrid cuts, links, rapids;
+  double r;
+};
+
+// Each sample stands for a third of the area of the triangles around it (taken on the
+// surface, as n-gon faces are parameterised by sub-faces).
+std::vector<double> area_shares(const FaceTessellation& tess,
+                                const std::vector<std::optional<LimitSample>>& evaluated) {
+  std::vector<double> share(tess.uv.size(), 0.0);
+  for (const auto& t : tess.triangles) {
+    const auto& a = evaluated[static_cast<std::size_t>(t[0])];
+    const auto& b = evaluated[static_cast<std::size_t>(t[1])];
+    const auto& c = evaluated[static_cast<std::size_t>(t[2])];
+    if (a && b && c) {
+      const double third = (b->point - a->point).cross(c->point - a->point).norm() / 6.0;
+      for (const int k : t) {
+        share[static_cast<std::size_t>(k)] += third;
+      }
+    }
+  }
+  return share;
+}
+
+// Measures one sample against every sweep: counts it in the report, and keeps it unless no
+// ball reached it.
+void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& near_moves,
+                    const LimitSample& s, const Sample& where, double share, VerifyReport& report,
+                    std::vector<Measured>& kept) {
+  const double r = sweeps.r;
+  sweeps.cuts.near(s.point, m.near);
+  const auto h = measure_scallop(s.point, s.normal, m.near, r);
+  ++report.samples;
+  count_touch(depth_inside(sweeps.links, s.point, s.normal, r, near_moves), s.point, report.links);
+  count_touch(depth_inside(sweeps.rapids, s.point, s.normal, r, near_moves), s.point,
+              report.rapids);
+  if (h.gouge_depth > 1e-7) { // below 0.1 um: rounding of the CL data
+    ++report.gouges;
+    if (h.gouge_depth > report.max_gouge) {
+      report.max_gouge = h.gouge_depth;
+      report.gouge_at = s.point;
+    }
+  }
+  if (!std::isfinite(h.height)) {
+    ++report.uncut_samples;
+    return;
+  }
+  Sample sample = where;
+  sample.height = h.height;
+  kept.push_back({sample, s.point, static_cast<char>(h.gouge_depth > 1e-3 ? 1 : 0), share,
+                  radius_across(s, m.near), h.height});
+}
+
+// Every face's samples, `spacing` apart, measured.
+std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps& sweeps,
+                                      Measurer& m, double spacing, VerifyReport& report) {
+  std::vector<Measured> kept;
+  std::vector<Capsule> near_moves;
+  for (int f = 0; f < surface.face_count(); ++f) {
+    if (!surface.has_patch(f)) {
+      continue;
+    }
+    const auto centre = surface.evaluate_regular(f, 0.5, 0.5);
+    const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
+    const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
+    const auto tess = surface.tessellate(f, rate);
+    std::vector<std::optional<LimitSample>> evaluated;
+    for (const auto& uv : tess.uv) {
+      auto e = surface.evaluate_regular(f, uv.x(), uv.y());
+      evaluated.push_back(e ? std::optional<LimitSample>(*e) : std::nullopt);
+    }
+    const auto share = area_shares(tess, evaluated);
+    for (std::size_t k = 0; k < tess.uv.size(); ++k) {
+      if (evaluated[k]) {
+        measure_sample(sweeps, m, near_moves, *evaluated[k],
+                       {f, tess.uv[k].x(), tess.uv[k].y(), 0.0}, share[k], report, kept);
+      }
+    }
+  }
+  return kept;
+}
+
+// Mean and 99th percentile of the samples as first measured; then the worst, refined where
+// a sample came within half of the coarse worst (the cusp may lie between samples).
+void summarise_heights(Measurer& m, double spacing, std::vector<Measured>& kept,
+                       VerifyReport& report) {
+  std::vector<double> sorted;
+  double sum = 0.0;
+  for (const auto& k : kept) {
+    sorted.push_back(k.sample.height);
+    sum += k.sample.height;
+  }
+  std::ranges::sort(sorted);
+  const double coarse_max = sorted.empty() ? 0.0 : sorted.back();
+  report.mean_scallop = kept.empty() ? 0.0 : sum / static_cast<double>(kept.size());
+  report.p99_scallop = sorted.empty() ? 0.0 : sorted[sorted.size() * 99 / 100];
+  report.max_scallop = 0.0;
+  for (auto& k : kept) {
+    if (k.sample.height >= 0.5 * coarse_max) {
+      double gouge = 0.0;
+      k.height = refine(m, k.sample, spacing, gouge);
+      if (k.height > report.max_scallop) {
+        report.max_scallop = k.height;
+        report.max_at = k.point;
+      }
+      report.max_gouge = std::max(report.max_gouge, gouge);
+    }
+  }
+}
+
+// The area measured and the ideal length L* for a scallop of `h` (docs/METHOD.md §5).
+void add_ideal_length(double r, double h, const std::vector<Measured>& kept, VerifyReport& report) {
+  for (const auto& k : kept) {
+    report.area += k.weight;
+    const double rho = k.radius;
+    const double w = std::abs(rho) > 1e9        ? flat_step(r, h)
+                     : (rho < 0.0 && -rho <= r) ? 0.0
+                                                : contact_step(r, h, rho);
+    if (w > 0.0 && h > 0.0) {
+      report.ideal_length += k.weight / w;
+    }
+  }
+}
+
+Expected<void> draw_pictures(const VerifyOptions& options, const std::vector<Measured>& kept,
+                             const Path& path, const VerifyReport& report) {
+  if (!options.svg && !options.png) {
+    return {};
+  }
+  VerifyPicture picture;
+  for (const auto& k : kept) {
+    picture.points.push_back(k.point);
+    picture.heights.push_back(k.height);
+    picture.gouged.push_back(k.marked);
+  }
+  picture.max_height = report.max_scallop;
+  picture.name = options.name;
+  picture.target = options.scallop_target;
+  picture.passes_xy = path.passes_xy;
+  if (options.svg) {
+    SUBFEED_TRY(write_svg(*options.svg, picture));
+  }
+  if (options.png) {
+    SUBFEED_TRY(write_png(*options.png, picture));
+  }
+  return {};
+}
+
 } // namespace
 
 Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::filesystem::path& cl,
@@ -221,122 +380,14 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
     return fail(ErrorCode::bad_input, "no cutting moves in the CL data", {cl.string(), 0, {}});
   }
   // Rays look for material up to one radius above the surface.
-  const CapsuleGrid grid(path.capsules, r, r);
-  const CapsuleGrid link_grid(path.links, r, r), rapid_grid(path.rapids, r, r);
-  std::vector<Capsule> near_moves;
+  const Sweeps sweeps{CapsuleGrid(path.capsules, r, r), CapsuleGrid(path.links, r, r),
+                      CapsuleGrid(path.rapids, r, r), r};
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
-  Measurer m{surface, grid, r, {}};
-  std::vector<Sample> samples;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<char> gouges;
-  std::vector<double> weights;
-  std::vector<double> radii; // of normal curvature across the nearest pass, for L*
-  for (int f = 0; f < surface.face_count(); ++f) {
-    if (!surface.has_patch(f)) {
-      continue;
-    }
-    const auto centre = surface.evaluate_regular(f, 0.5, 0.5);
-    const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
-    const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
-    const auto tess = surface.tessellate(f, rate);
-    // Each sample stands for a third of the area of the triangles around it (taken on the
-    // surface, as n-gon faces are parameterised by sub-faces).
-    std::vector<std::optional<LimitSample>> evaluated;
-    for (const auto& uv : tess.uv) {
-      auto e = surface.evaluate_regular(f, uv.x(), uv.y());
-      evaluated.push_back(e ? std::optional<LimitSample>(*e) : std::nullopt);
-    }
-    std::vector<double> share(tess.uv.size(), 0.0);
-    for (const auto& t : tess.triangles) {
-      const auto& a = evaluated[static_cast<std::size_t>(t[0])];
-      const auto& b = evaluated[static_cast<std::size_t>(t[1])];
-      const auto& c = evaluated[static_cast<std::size_t>(t[2])];
-      if (a && b && c) {
-        const double third = (b->point - a->point).cross(c->point - a->point).norm() / 6.0;
-        for (const int k : t) {
-          share[static_cast<std::size_t>(k)] += third;
-        }
-      }
-    }
-    for (std::size_t k = 0; k < tess.uv.size(); ++k) {
-      const auto& uv = tess.uv[k];
-      const auto& s = evaluated[k];
-      if (!s) {
-        continue;
-      }
-      grid.near(s->point, m.near);
-      const auto h = measure_scallop(s->point, s->normal, m.near, r);
-      ++report.samples;
-      count_touch(depth_inside(link_grid, s->point, s->normal, r, near_moves), s->point,
-                  report.links);
-      count_touch(depth_inside(rapid_grid, s->point, s->normal, r, near_moves), s->point,
-                  report.rapids);
-      const bool gouged = h.gouge_depth > 1e-7; // below 0.1 um: rounding of the CL data
-      if (gouged) {
-        ++report.gouges;
-        if (h.gouge_depth > report.max_gouge) {
-          report.max_gouge = h.gouge_depth;
-          report.gouge_at = s->point;
-        }
-      }
-      if (!std::isfinite(h.height)) {
-        ++report.uncut_samples;
-        continue;
-      }
-      samples.push_back({f, uv.x(), uv.y(), h.height});
-      points.push_back(s->point);
-      gouges.push_back(h.gouge_depth > 1e-3 ? 1 : 0); // the picture marks those over 1 um
-      radii.push_back(radius_across(*s, m.near));
-      weights.push_back(share[k]);
-    }
-  }
-  std::vector<double> heights;
-  for (const auto& s : samples) {
-    heights.push_back(s.height);
-  }
-  std::vector<double> sorted = heights;
-  std::ranges::sort(sorted);
-  const double coarse_max = sorted.empty() ? 0.0 : sorted.back();
-  double sum = 0.0;
-  for (const double h : heights) {
-    sum += h;
-  }
-  report.mean_scallop = heights.empty() ? 0.0 : sum / static_cast<double>(heights.size());
-  report.p99_scallop = sorted.empty() ? 0.0 : sorted[sorted.size() * 99 / 100];
-  report.max_scallop = 0.0;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    if (samples[i].height >= 0.5 * coarse_max) {
-      double gouge = 0.0;
-      heights[i] = refine(m, samples[i], spacing, gouge);
-      if (heights[i] > report.max_scallop) {
-        report.max_scallop = heights[i];
-        report.max_at = points[i];
-      }
-      report.max_gouge = std::max(report.max_gouge, gouge);
-    }
-  }
-  const double h = options.scallop_target.value_or(report.max_scallop);
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    report.area += weights[i];
-    const double rho = radii[i];
-    const double w = std::abs(rho) > 1e9        ? flat_step(r, h)
-                     : (rho < 0.0 && -rho <= r) ? 0.0
-                                                : contact_step(r, h, rho);
-    if (w > 0.0 && h > 0.0) {
-      report.ideal_length += weights[i] / w;
-    }
-  }
-  if (options.svg || options.png) {
-    const VerifyPicture picture{std::move(points),  std::move(heights), std::move(gouges),
-                                report.max_scallop, options.name,       options.scallop_target,
-                                path.passes_xy};
-    if (options.svg) {
-      SUBFEED_TRY(write_svg(*options.svg, picture));
-    }
-    if (options.png) {
-      SUBFEED_TRY(write_png(*options.png, picture));
-    }
-  }
+  Measurer m{surface, sweeps.cuts, r, {}};
+  auto kept = measure_surface(surface, sweeps, m, spacing, report);
+  summarise_heights(m, spacing, kept, report);
+  add_ideal_length(r, options.scallop_target.value_or(report.max_scallop), kept, report);
+  SUBFEED_TRY(draw_pictures(options, kept, path, report));
   return report;
 }
 

@@ -60,39 +60,62 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
                      MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}));
   ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
   planner.chord_tolerance_ = chord;
-  const auto& m = planner.mesh_;
-  const double r = options.ball_radius;
-  for (int i = 0; i < m.vertex_count(); ++i) {
-    planner.cl_points_.push_back(m.points[static_cast<std::size_t>(i)] +
-                                 r * m.normals[static_cast<std::size_t>(i)]);
-  }
+  planner.place_cl_points();
   planner.index_triangles();
-  // A tool along the normal cuts with its tip on the design surface; a vertical one
-  // follows the ball centres (shifted down by r).
-  const auto& path_points = options.fixed_axis ? planner.cl_points_ : m.points;
-  double direction = options.direction_deg;
   DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
-    const DirectionPricing pricing{r,
-                                   options.scallop,
-                                   std::min(options.refine_iterations, 4),
-                                   options.refine_iterations,
-                                   options.spacing_allowance,
-                                   options.insertion_margin};
-    SUBFEED_TRY_ASSIGN(
-        choice, choose_feed_direction(m, planner.cl_points_, path_points, pricing, progress));
-    direction = choice.direction_deg;
-    planner.summary_.direction_prices = choice.prices;
+    SUBFEED_TRY_ASSIGN(choice, planner.price_directions(progress));
   }
-  planner.summary_.direction_deg = direction;
-  const double a = direction * std::numbers::pi / 180.0;
-  planner.feed_dir_ = {std::cos(a), std::sin(a), 0.0};
-  planner.s_ = slicing_normal_for(direction);
-  const auto intervals = pass_intervals(m, r, options.scallop, planner.s_);
+  planner.face(options.choose_direction ? choice.direction_deg : options.direction_deg);
+  const auto intervals =
+      pass_intervals(planner.mesh_, options.ball_radius, options.scallop, planner.s_);
+  SUBFEED_TRY(planner.deform(intervals, std::move(choice), progress));
+  planner.summarise(intervals);
+  planner.set_link_limits(std::ranges::max(intervals.cl_spacing));
+  return planner;
+}
+
+void ToolpathPlanner::place_cl_points() {
+  const double r = options_.ball_radius;
+  for (int i = 0; i < mesh_.vertex_count(); ++i) {
+    cl_points_.push_back(mesh_.points[static_cast<std::size_t>(i)] +
+                         r * mesh_.normals[static_cast<std::size_t>(i)]);
+  }
+}
+
+const std::vector<Eigen::Vector3d>& ToolpathPlanner::path_points() const {
+  // A tool along the normal cuts with its tip on the design surface; a vertical one
+  // follows the ball centres (shifted down by r).
+  return options_.fixed_axis ? cl_points_ : mesh_.points;
+}
+
+Expected<DirectionChoice> ToolpathPlanner::price_directions(const SolveProgress& progress) {
+  const auto& o = options_;
+  const DirectionPricing pricing{
+      o.ball_radius,       o.scallop,           std::min(o.refine_iterations, 4),
+      o.refine_iterations, o.spacing_allowance, o.insertion_margin};
+  SUBFEED_TRY_ASSIGN(auto choice,
+                     choose_feed_direction(mesh_, cl_points_, path_points(), pricing, progress));
+  summary_.direction_prices = choice.prices;
+  return choice;
+}
+
+void ToolpathPlanner::face(double direction_deg) {
+  summary_.direction_deg = direction_deg;
+  const double a = direction_deg * std::numbers::pi / 180.0;
+  feed_dir_ = {std::cos(a), std::sin(a), 0.0};
+  s_ = slicing_normal_for(direction_deg);
+}
+
+Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, DirectionChoice choice,
+                                       const SolveProgress& progress) {
+  const auto& o = options_;
+  const auto& m = mesh_;
+  const double r = o.ball_radius;
   const double widest = std::ranges::max(intervals.cl_spacing);
-  const double insertion_margin = options.insertion_margin.value_or(widest);
+  const double insertion_margin = o.insertion_margin.value_or(widest);
   const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
-    return cl_spacing_across(m, r, options.scallop, across, intervals.cl_spacing);
+    return cl_spacing_across(m, r, o.scallop, across, intervals.cl_spacing);
   };
   // Inserted pieces between rings lie behind what the front goes round, short and far
   // from each other: each runs one narrowest spacing past where it is needed, not the
@@ -104,64 +127,74 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
       narrowest = std::min(narrowest, intervals.cl_spacing[v]);
     }
   }
-  const double ring_margin = options.insertion_margin.value_or(narrowest);
+  const double ring_margin = o.insertion_margin.value_or(narrowest);
   const auto rings = [&] {
-    return concentric_deformation(planner.cl_points_, path_points, m.triangles, intervals, need,
+    return concentric_deformation(cl_points_, path_points(), m.triangles, intervals, need,
                                   {intervals.min_interval, ring_rounds, ring_margin,
-                                   std::max(options.spacing_allowance, ring_allowance)});
+                                   std::max(o.spacing_allowance, ring_allowance)});
   };
-  if (options.baseline) {
+  if (o.baseline) {
     // The baseline is iso-planar whatever the pattern: what the deformation is measured by.
-    planner.deformation_ = iso_planar(planner.cl_points_, planner.s_, intervals);
-  } else if (options.pattern == PassPattern::concentric) {
-    planner.deformation_ = rings();
+    deformation_ = iso_planar(cl_points_, s_, intervals);
+    return {};
+  }
+  if (o.pattern == PassPattern::concentric) {
+    deformation_ = rings();
+    return {};
+  }
+  if (choice.solved_in_full) {
+    deformation_ = std::move(choice.deformation);
   } else {
-    if (choice.solved_in_full) {
-      planner.deformation_ = std::move(choice.deformation);
-    } else {
-      SUBFEED_TRY_ASSIGN(planner.deformation_,
-                         deform_cl_mesh(planner.cl_points_, path_points, m.triangles, planner.s_,
-                                        intervals, options.refine_iterations, insertion_margin,
-                                        options.spacing_allowance, progress, need));
-    }
-    if (options.choose_direction) {
-      auto candidate = rings();
-      planner.summary_.ring_price = candidate.insertion.predicted_length;
-      planner.summary_.parallel_price = planner.deformation_.insertion.predicted_length;
-      if (planner.summary_.ring_price < (1.0 - ring_preference) * planner.summary_.parallel_price) {
-        planner.deformation_ = std::move(candidate);
-      }
+    SUBFEED_TRY_ASSIGN(deformation_,
+                       deform_cl_mesh(cl_points_, path_points(), m.triangles, s_, intervals,
+                                      o.refine_iterations, insertion_margin, o.spacing_allowance,
+                                      progress, need));
+  }
+  if (o.choose_direction) {
+    auto candidate = rings();
+    summary_.ring_price = candidate.insertion.predicted_length;
+    summary_.parallel_price = deformation_.insertion.predicted_length;
+    if (summary_.ring_price < (1.0 - ring_preference) * summary_.parallel_price) {
+      deformation_ = std::move(candidate);
     }
   }
-  for (const int v : planner.deformation_.ring_centres) {
-    planner.summary_.ring_centres.push_back(m.points[static_cast<std::size_t>(v)]);
+  return {};
+}
+
+void ToolpathPlanner::summarise(const PassIntervals& intervals) {
+  const auto& m = mesh_;
+  auto& s = summary_;
+  for (const int v : deformation_.ring_centres) {
+    s.ring_centres.push_back(m.points[static_cast<std::size_t>(v)]);
   }
-  auto& s = planner.summary_;
   s.rate = m.rate;
-  s.scallop = options.scallop;
-  s.ball_radius = r;
+  s.scallop = options_.scallop;
+  s.ball_radius = options_.ball_radius;
   s.mesh_vertices = m.vertex_count();
   s.mesh_triangles = m.triangle_count();
   s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
-  planner.set_clear_balls();
+  set_clear_balls();
   s.unreachable_regions =
-      unreachable_regions(m, intervals.reachable, planner.material_left(intervals.reachable));
+      unreachable_regions(m, intervals.reachable, material_left(intervals.reachable));
   s.min_interval = intervals.min_interval;
   s.max_interval = intervals.max_interval;
-  s.reference = planner.deformation_.reference;
-  s.solves = planner.deformation_.iterations;
-  s.chosen_solve = planner.deformation_.chosen;
-  s.worst_spacing_ratio = planner.deformation_.worst_ratio;
-  s.inserted_depth = planner.deformation_.insertion.max_depth;
-  s.planes = planner.deformation_.planes.planes;
+  s.reference = deformation_.reference;
+  s.solves = deformation_.iterations;
+  s.chosen_solve = deformation_.chosen;
+  s.worst_spacing_ratio = deformation_.worst_ratio;
+  s.inserted_depth = deformation_.insertion.max_depth;
+  s.planes = deformation_.planes.planes;
+}
+
+void ToolpathPlanner::set_link_limits(double widest_spacing) {
+  const double r = options_.ball_radius;
   double top = -1e300;
-  for (const auto& c : planner.cl_points_) {
+  for (const auto& c : cl_points_) {
     top = std::max(top, c.z() + r);
   }
-  planner.safe_z_ = top + options.clearance;
-  planner.link_distance_ = 2.0 * widest + options.clearance;
-  planner.stay_down_ = options.stay_down.value_or(2.0 * r);
-  return planner;
+  safe_z_ = top + options_.clearance;
+  link_distance_ = 2.0 * widest_spacing + options_.clearance;
+  stay_down_ = options_.stay_down.value_or(2.0 * r);
 }
 
 // Centroids and reaches (for the clearance check), area normals (for the tool axis) and the

@@ -45,7 +45,7 @@ double verified_max(const std::string& out) {
 
 } // namespace
 
-TEST_CASE("plan then verify the sample bowl", "[slow]") {
+TEST_CASE("plan then verify the sample bowl", "[parts][slow]") {
   TempDir dir;
   const auto cl = (dir.path() / "bowl.cl").string();
   const auto svg = (dir.path() / "bowl.svg").string();
@@ -78,7 +78,7 @@ TEST_CASE("plan then verify the sample bowl", "[slow]") {
                                       R"(mm against \d+ mm of parallel passes)"));
 }
 
-TEST_CASE("plan --direction concentric cuts rings about the dome's top", "[slow]") {
+TEST_CASE("plan --direction concentric cuts rings about the dome's top", "[parts][slow]") {
   TempDir dir;
   const auto cl = (dir.path() / "dome.cl").string();
   const auto cage = source_dir + "/examples/dome.obj";
@@ -169,7 +169,8 @@ std::string narrow_bowl_obj(double a) {
 
 } // namespace
 
-TEST_CASE("plan warns of material left only where it is thicker than the scallop", "[slow]") {
+TEST_CASE("plan warns of material left only where it is thicker than the scallop",
+          "[parts][slow]") {
   TempDir dir;
   const auto cl = (dir.path() / "part.cl").string();
   // The sample seat and bowl: every place is reached or keeps less than H: one line, "none".

@@ -146,7 +146,20 @@ private:
     Eigen::Vector3d centre, contact, normal, axis;
   };
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate);
+  // The steps of prepare(), in order.
+  void place_cl_points(); // the ball centres over the mesh's vertices
   void index_triangles();
+  // Prices the feed directions (--direction auto); the cheapest, maybe solved in full.
+  [[nodiscard]] Expected<DirectionChoice> price_directions(const SolveProgress& progress);
+  void face(double direction_deg); // the feed direction and the slicing normal
+  // The deformation the passes are sliced from: iso-planar, rings, or solved (or the
+  // direction pricing's own solve), and rings instead where auto finds them shorter.
+  [[nodiscard]] Expected<void> deform(const PassIntervals& intervals, DirectionChoice choice,
+                                      const SolveProgress& progress);
+  void summarise(const PassIntervals& intervals); // also lifts the clear balls
+  void set_link_limits(double widest_spacing);
+  // Where the tool tip runs: the design surface, or the ball centres for a fixed axis.
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& path_points() const;
   [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const TriangleTree& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   cut_level(MeshSlicer& slicer, double level, int depth, const TriangleTree& design);
