@@ -9,6 +9,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <optional>
+
 using namespace subfeed::geometry;
 
 TEST_CASE("blocked vertices sharing triangle edges form one region, apart, two") {
@@ -48,15 +50,16 @@ TEST_CASE("blocked vertices sharing triangle edges form one region, apart, two")
 namespace {
 
 // Where the ball cannot reach is settled before the passes: one deformation solve reaches
-// the same code at a fraction of the cost under the sanitizers. The mesh stays at the
-// plan's own tolerance: the regions' boxes are its vertices'.
-PlanSummary summary_under_3mm_ball(const Cage& cage) {
+// the same code at a fraction of the cost under the sanitizers. The regions' boxes are the
+// mesh's vertices: `tolerance` (mm; empty: the plan's own) sets how finely they fall.
+PlanSummary summary_under_3mm_ball(const Cage& cage, std::optional<double> tolerance) {
   const auto surface = LimitSurface::build(cage);
   REQUIRE(surface);
   PlanOptions options;
   options.ball_radius = 3.0;
   options.scallop = 0.01;
   options.refine_iterations = 1;
+  options.tolerance = tolerance;
   const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
   REQUIRE(planner);
   return planner->summary();
@@ -67,7 +70,8 @@ PlanSummary summary_under_3mm_ball(const Cage& cage) {
 TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
   // z = 0.25 (x^2 + y^2): radius 2 mm at the bottom, growing outward; a 3 mm ball reaches
   // only where the radius across the passes has grown past 3 mm.
-  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.25));
+  // A 2 um mesh places the region's box well within the checks' 0.1 mm.
+  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.25), 0.002);
   REQUIRE(s.unreachable_vertices > 0);
   REQUIRE(s.unreachable_regions.size() == 1);
   const auto& r = s.unreachable_regions.front();
@@ -85,7 +89,8 @@ TEST_CASE("a trough narrower than the ball along the passes is found too") {
   // z = 0.25 x^2, flat along y; the passes run along x (planes across y), so the radius
   // across them is infinite, but along them it is 2 mm at the bottom: a 3 mm ball misses
   // the strip where 0.5 / (1 + x^2 / 4)^1.5 >= 1/3, |x| <= 1.114 mm, the trough's length.
-  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0));
+  // The strip's edge at 1.114 mm needs the plan's own fine mesh to fall within 0.1 mm.
+  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0), {});
   REQUIRE(s.unreachable_regions.size() == 1);
   const auto& r = s.unreachable_regions.front();
   CHECK(r.high.x() == Approx(1.114).margin(0.1));
