@@ -6,14 +6,6 @@ namespace subfeed::post {
 
 namespace {
 
-// Errors from the post and the writer know the CL line; the file is the CL file.
-Error in_file(Error error, const std::string& file) {
-  if (error.where.file.empty() && error.where.line > 0) {
-    error.where.file = file;
-  }
-  return error;
-}
-
 Expected<void> post_all(cl::ClReader& reader, ProgramSink& sink, const PostFileOptions& options) {
   if (options.look_ahead) {
     SUBFEED_TRY(sink.choose_start(reader));
@@ -40,7 +32,7 @@ Expected<PostFileSummary> post_file(const std::filesystem::path& cl_path,
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(cl_path));
   SUBFEED_TRY_ASSIGN(auto sink, ProgramSink::create(machine, options, out_path));
   if (auto done = post_all(reader, *sink, options); !done) {
-    return std::unexpected(in_file(std::move(done).error(), reader.file()));
+    return std::unexpected(cl::in_cl_file(std::move(done).error(), reader.file()));
   }
   SUBFEED_TRY(sink->commit());
   return sink->summary();

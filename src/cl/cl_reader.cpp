@@ -225,4 +225,11 @@ Expected<std::optional<ClPose>> ClReader::goto_record(std::string_view args) {
   return pose;
 }
 
+Error in_cl_file(Error error, const std::filesystem::path& file) {
+  if (error.where.file.empty() && error.where.line > 0) {
+    error.where.file = file.string();
+  }
+  return error;
+}
+
 } // namespace subfeed::cl

@@ -143,6 +143,10 @@ std::string title_of(const VerifyPicture& picture) {
   return title + fmt::format("   max {:.3g} mm", picture.max_height);
 }
 
+std::string tick_label(double value) {
+  return fmt::format("{:.3g}", value);
+}
+
 Layout layout_of(const Raster& r, const VerifyPicture& picture) {
   Layout l;
   const int line = text_height(Layout::text_scale);
@@ -158,7 +162,10 @@ Layout layout_of(const Raster& r, const VerifyPicture& picture) {
   l.scale_mm = nice_length(r.width * r.cell);
   l.scale_px = static_cast<int>(std::lround(l.scale_mm / r.cell * cell_pixels));
   l.scale_y = l.map_y + body_h + Layout::pad;
-  const int labels = text_width("0.00000", Layout::text_scale);
+  int labels = 0; // the widest tick label
+  for (int t = 0; t < Layout::ticks; ++t) {
+    labels = std::max(labels, text_width(tick_label(l.tick_value(t)), Layout::text_scale));
+  }
   l.width = std::max({l.bar_x + Layout::bar_width + Layout::pad + labels + Layout::pad,
                       l.bar_x + text_width(bar_heading, Layout::text_scale) + Layout::pad,
                       text_width(l.title, Layout::text_scale) + 2 * Layout::pad});
@@ -173,10 +180,6 @@ std::string xml_text(std::string_view text) {
     out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
   }
   return out;
-}
-
-std::string tick_label(double value) {
-  return fmt::format("{:.3g}", value);
 }
 
 } // namespace

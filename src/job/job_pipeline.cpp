@@ -18,14 +18,6 @@ Error stopped_reading() {
   return Error{ErrorCode::stopped, "the post stopped reading", {}};
 }
 
-// The post's errors know the CL line; the file is the job's .cl.
-Error in_file(Error error, const std::filesystem::path& file) {
-  if (error.where.file.empty() && error.where.line > 0) {
-    error.where.file = file.string();
-  }
-  return error;
-}
-
 double distance(const cl::ClPose& a, const cl::ClPose& b) {
   double sum = 0.0;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -136,7 +128,7 @@ Expected<void> JobPipeline::read_all() {
     }
     if (spec_.gate) {
       if (auto checked = spec_.gate->check(*pose); !checked) {
-        return std::unexpected(in_file(std::move(checked).error(), spec_.files.cl));
+        return std::unexpected(cl::in_cl_file(std::move(checked).error(), spec_.files.cl));
       }
     }
     SUBFEED_TRY(hand_over(*pose, last, cut_mm));
@@ -200,7 +192,7 @@ Expected<void> JobPipeline::post_all() {
     return sink->finish();
   };
   if (auto done = run(); !done) {
-    return std::unexpected(in_file(std::move(done).error(), spec_.files.cl));
+    return std::unexpected(cl::in_cl_file(std::move(done).error(), spec_.files.cl));
   }
   if (plan_error_) {
     return std::unexpected(*plan_error_);

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -132,15 +133,26 @@ JobRecord cl_job(const TempDir& dir) {
   return o;
 }
 
+// That job started, with `post`'s program of the same CL data to compare it with.
+struct StartedClJob {
+  PostAlone alone;
+  JobFiles files;
+  std::unique_ptr<JobPipeline> job;
+};
+
+StartedClJob start_cl_job(const TempDir& dir) {
+  auto spec = spec_of(cl_job(dir));
+  StartedClJob started{PostAlone(spec), spec.files, nullptr};
+  started.job = std::make_unique<JobPipeline>(std::move(spec));
+  started.job->start();
+  return started;
+}
+
 TEST_CASE("job pipeline: a job on CL data streams what post writes of it, byte for byte") {
   const TempDir dir;
-  auto spec = spec_of(cl_job(dir));
-  const PostAlone alone(spec);
-  const auto files = spec.files;
-  JobPipeline job(std::move(spec));
-  job.start();
-  const auto streamed = drain(job);
-  REQUIRE(job.finish());
+  auto [alone, files, job] = start_cl_job(dir);
+  const auto streamed = drain(*job);
+  REQUIRE(job->finish());
   alone.write(dir.path() / "alone.nc");
   CHECK(read_text(files.nc) == read_text(dir.path() / "alone.nc"));
   CHECK(read_text(post::map_path_for(files.nc)) == read_text(dir.path() / "alone.nc.map"));
@@ -149,15 +161,11 @@ TEST_CASE("job pipeline: a job on CL data streams what post writes of it, byte f
 
 TEST_CASE("job pipeline: detached from the stream, it finishes the files alone") {
   const TempDir dir;
-  auto spec = spec_of(cl_job(dir));
-  const PostAlone alone(spec);
-  const auto files = spec.files;
-  JobPipeline job(std::move(spec));
-  job.start();
-  const bool took = job.program().pop().has_value(); // the stream took a line, then stopped
+  auto [alone, files, job] = start_cl_job(dir);
+  const bool took = job->program().pop().has_value(); // the stream took a line, then stopped
   REQUIRE(took);
-  job.detach();
-  const auto totals = job.finish();
+  job->detach();
+  const auto totals = job->finish();
   REQUIRE(totals);
   alone.write(dir.path() / "alone.nc");
   CHECK(read_text(files.nc) == read_text(dir.path() / "alone.nc"));

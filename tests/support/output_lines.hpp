@@ -27,7 +27,4 @@ namespace subfeed::testing {
 // literal pieces and open numbers.
 [[nodiscard]] std::string literal(std::string_view text);
 
-// A decimal number, signed, with or without a fraction, for patterns.
-inline constexpr const char* number = R"(-?[0-9]+(?:\.[0-9]+)?)";
-
 } // namespace subfeed::testing

@@ -59,4 +59,8 @@ private:
   long data_start_line_ = 0;
 };
 
+// An error that knows its CL line but not the file (the post's, the motion gate's), named in
+// `file`; any other error as it is.
+[[nodiscard]] Error in_cl_file(Error error, const std::filesystem::path& file);
+
 } // namespace subfeed::cl
