@@ -136,3 +136,18 @@ TEST_CASE("the approach: retract along the tool when the position is known, else
   }
   CHECK(tool_axis_fixed(*machine));
 }
+
+TEST_CASE("a program line that is not G-code words stops a restart, naming it") {
+  // A restart found or rebuilt from a line that cannot be read would be a guess.
+  TempDir dir;
+  const auto file = dir.write("bad.nc", "G21 G90\nG1 X1 (never closed\nG1 X2\n").string();
+  const auto window = read_window(file, 1, 3, 0);
+  REQUIRE_FALSE(window);
+  CHECK(window.error().describe() == file + ":2: comment not closed");
+  const auto restore = restore_blocks(file, 2);
+  REQUIRE_FALSE(restore);
+  CHECK(restore.error().describe() == file + ":2: comment not closed");
+  // The window reads the whole program (it counts its lines); the modes are read only up to
+  // the restart, so a restart before the bad line restores as it is.
+  CHECK(restore_blocks(file, 1).value() == std::vector<std::string>{"G21 G90"});
+}
