@@ -49,7 +49,7 @@ PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, 
   PlanRun run;
   run.seconds = bench::best_seconds(1, [&] {
     auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options).value();
-    auto writer = cl::ClWriter::create(out, {"BENCH", {2 * radius, radius}, true}).value();
+    auto writer = cl::ClWriter::create(out, {"BENCH", {2 * radius, radius}, true, {}}).value();
     (void)planner.run([&](const cl::ClPose& p) -> Expected<void> {
       writer.write(p);
       return {};

@@ -99,6 +99,14 @@ Expected<bool> ClReader::header_record(std::string_view record) {
     header_.part_name = std::string(trim(record.substr(6)));
     return true;
   }
+  // PPRINT is free text for the operator; only subfeed's setup record means anything here.
+  if (record.starts_with("PPRINT")) {
+    const auto text = trim(record.substr(6));
+    if (text.starts_with("SETUP ")) {
+      header_.setup = std::string(trim(text.substr(6)));
+    }
+    return true;
+  }
   const auto [word, args] = split_record(record);
   if (word == "UNITS") {
     if (args != "MM") {
@@ -191,7 +199,8 @@ Expected<std::optional<ClPose>> ClReader::motion_record(std::string_view record)
     return std::optional<ClPose>{};
   }
   if (word != "GOTO") {
-    if (word == "PARTNO" || word == "UNITS" || word == "CUTTER" || word == "MULTAX") {
+    if (word == "PARTNO" || word == "UNITS" || word == "CUTTER" || word == "MULTAX" ||
+        word.starts_with("PPRINT")) {
       return error(std::string(word) + " after the first motion record");
     }
     return error("unknown record '" + std::string(word) + "'");

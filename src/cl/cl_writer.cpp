@@ -15,8 +15,11 @@ Expected<ClWriter> ClWriter::create(const std::filesystem::path& path, const ClH
   text += ',';
   append_decimal(text, header.cutter.corner_radius, 6);
   text += header.multiaxis ? "\nMULTAX/ON\n" : "\n";
+  if (!header.setup.empty()) {
+    text += "PPRINT SETUP " + header.setup + "\n";
+  }
   writer.out_.write(text);
-  writer.line_ = header.multiaxis ? 4 : 3;
+  writer.line_ = static_cast<long>(std::ranges::count(text, '\n'));
   return writer;
 }
 

@@ -3,7 +3,9 @@
 // Exit 2 when anything exceeds the tolerances or the machine's limits.
 
 #include "command.hpp"
+#include "setup_flags.hpp"
 
+#include "cl/cl_reader.hpp"
 #include "post/machine_config.hpp"
 #include "post/program_check.hpp"
 
@@ -21,6 +23,7 @@ struct CheckCommandOptions {
   double tolerance = 0.002;
   double axis_tolerance = 0.05;
   int samples = 8;
+  job::SetupFlags setup;
 };
 
 std::string at(const post::Finding& f) {
@@ -35,6 +38,12 @@ Expected<void> run_check(const CheckCommandOptions& o, Logger& log) {
   options.samples_per_block = o.samples;
   if (!o.cl.empty()) {
     options.cl = o.cl;
+    SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
+    SUBFEED_TRY(job::agreed_setup(o.setup, reader.header().setup, o.cl));
+  } else if (o.setup.any()) {
+    return fail(ErrorCode::usage,
+                "a setup is checked against the CL data's own record: give --cl as well",
+                {{}, 0, "--cl"});
   }
   SUBFEED_TRY_ASSIGN(const auto r, post::check_program(o.program, machine, options));
   log.info(fmt::format("{}: {} lines, {} motion blocks, {} feed blocks, cutting time {:.2f} min",
@@ -75,6 +84,7 @@ void add_check_command(CLI::App& app, Action& chosen) {
       ->check(CLI::Range(1e-5, 10.0));
   cmd->add_option("--samples", o->samples, "Points checked inside every feed block")
       ->check(CLI::Range(1, 1000));
+  add_setup_flags(*cmd, o->setup);
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_check(*o, log); }; });
 }
 

@@ -5,10 +5,11 @@
 #include "plan_flags.hpp"
 #include "plan_progress.hpp"
 #include "plan_report.hpp"
+#include "setup_flags.hpp"
 
 #include "cl/cl_writer.hpp"
 #include "geometry/limit_surface.hpp"
-#include "geometry/obj_reader.hpp"
+#include "geometry/part_setup.hpp"
 #include "geometry/toolpath_planner.hpp"
 #include "job/plan_refusal.hpp"
 
@@ -25,13 +26,15 @@ namespace {
 struct PlanCommandOptions {
   std::string cage;
   PlanSettings plan;
+  SetupFlags setup;
   std::string output;
 };
 
 Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const auto options, plan_options_from(o.plan));
   const double radius = options.ball_radius;
-  SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_obj(o.cage));
+  const auto setup = o.setup.with_defaults();
+  SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_part(o.cage, setup));
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.plan.level));
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
   PlanProgress progress(terminal);
@@ -41,8 +44,10 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                                        [&](int solve, int most) { progress.solve(solve, most); }));
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cage).replace_extension(".cl").string() : o.output;
-  cl::ClHeader header{
-      std::filesystem::path(o.cage).stem().string(), {2 * radius, radius}, !options.fixed_axis};
+  cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
+                      {2 * radius, radius},
+                      !options.fixed_axis,
+                      geometry::setup_text(setup)};
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
   const auto ran = planner.run(
       [&writer](const cl::ClPose& pose) -> Expected<void> {
@@ -112,10 +117,12 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
 void add_plan_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<PlanCommandOptions>();
   CLI::App* cmd = app.add_subcommand("plan", "Plan constant-scallop finishing passes on a cage");
-  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+  cmd->add_option("cage", o->cage,
+                  "Control cage (Wavefront OBJ; units and orientation: --units, --up)")
       ->required()
       ->type_name("CAGE.obj");
   add_plan_flags(*cmd, o->plan);
+  add_setup_flags(*cmd, o->setup);
   cmd->add_option("-o,--output", o->output, "CL data to write (default: CAGE.cl)");
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_plan(*o, log); }; });
 }

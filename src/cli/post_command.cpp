@@ -5,6 +5,7 @@
 #include "job/cl_gate.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
+#include "setup_flags.hpp"
 
 #include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
@@ -34,7 +35,8 @@ struct PostCommandOptions {
   bool line_numbers = false;
   bool no_look_ahead = false;
   double spindle = 0.0;
-  std::string cage;            // check every move against its part first
+  std::string cage; // check every move against its part first
+  SetupFlags setup;
   double gate_tolerance = 0.0; // mm; 0: the gate's default
   int level = geometry::min_approx_level;
 };
@@ -67,9 +69,13 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
   std::optional<geometry::MotionGate> gate;
   if (!o.cage.empty()) {
     SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
-    SUBFEED_TRY_ASSIGN(auto built, gate_for_cl(o.cage, reader.header(), o.level, o.gate_tolerance));
+    SUBFEED_TRY_ASSIGN(
+        auto built, gate_for_cl(o.cage, reader.header(), o.cl, o.setup, o.level, o.gate_tolerance));
     gate.emplace(std::move(built));
     options.check = [&gate](const cl::ClPose& pose) { return gate->check(pose); };
+  } else if (o.setup.any()) { // nothing to set up, but a setup said must be the CL's own
+    SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
+    SUBFEED_TRY(agreed_setup(o.setup, reader.header().setup, o.cl));
   }
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cl).replace_extension(".nc").string() : o.output;
@@ -114,6 +120,7 @@ void add_post_command(CLI::App& app, Action& chosen) {
                   "--gate-tolerance or a rapid touching it is refused and nothing is written")
       ->type_name("CAGE.obj");
   add_gate_tolerance_flag(*cmd, o->gate_tolerance);
+  add_setup_flags(*cmd, o->setup);
   cmd->add_option("--level", o->level,
                   "With --cage: Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));

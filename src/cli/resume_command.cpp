@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "job/control_thread.hpp"
 #include "option_checks.hpp"
+#include "setup_flags.hpp"
 #include "stream_reporter.hpp"
 
 #include "job/restart_plan.hpp"
@@ -121,6 +122,7 @@ void add_resume_command(CLI::App& app, Action& chosen) {
                   "the tool tilts with the head)")
       ->type_name("X,Y,Z,...");
   cmd->add_flag("--yes", o->yes, "Do not ask before moving the machine");
+  add_setup_flags(*cmd, o->request.setup);
   cmd->add_option("--clearance", o->request.clearance, "Retract along the tool axis, mm")
       ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--plunge-feed", o->request.plunge_feed,

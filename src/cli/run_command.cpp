@@ -15,6 +15,7 @@
 #include "option_checks.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
+#include "setup_flags.hpp"
 
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/grbl_streamer.hpp"
@@ -33,6 +34,7 @@ namespace {
 
 void add_run_flags(CLI::App& cmd, job::JobRecord& o) {
   add_plan_flags(cmd, o.plan, false);
+  add_setup_flags(cmd, o.setup);
   cmd.add_option("--machine", o.machine, "Machine config: kinematics, limits, controller")
       ->required()
       ->type_name("M.toml");
@@ -121,7 +123,8 @@ void add_run_command(CLI::App& app, Action& chosen) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Plan, post and drip-feed one job, lazily: cutting starts while planning goes on");
   cmd->add_option("cage", o->cage,
-                  "Control cage (Wavefront OBJ, mm) to plan, or CL data (.cl) to post as it is")
+                  "Control cage (Wavefront OBJ; units and orientation: --units, --up) to plan, or "
+                  "CL data (.cl) to post as it is")
       ->required()
       ->type_name("CAGE.obj|PART.cl");
   add_run_flags(*cmd, *o);

@@ -2,10 +2,12 @@
 // scallop measurement of a path on its surface (geometry/path_verifier.hpp).
 
 #include "command.hpp"
+#include "job/setup_flags.hpp"
 #include "job/tool_spec.hpp"
+#include "setup_flags.hpp"
 
+#include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
-#include "geometry/obj_reader.hpp"
 #include "geometry/path_verifier.hpp"
 
 #include <CLI/CLI.hpp>
@@ -26,11 +28,14 @@ struct VerifyCommandOptions {
   std::string svg;
   std::string png;
   int level = geometry::min_approx_level;
+  SetupFlags setup;
 };
 
 Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const double radius, parse_ball_tool(o.tool));
-  SUBFEED_TRY_ASSIGN(const auto cage, geometry::read_obj(o.cage));
+  SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
+  SUBFEED_TRY_ASSIGN(const auto cage,
+                     read_part_agreed(o.cage, o.setup, reader.header().setup, o.cl));
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.level));
   geometry::VerifyOptions options;
   options.ball_radius = radius;
@@ -85,7 +90,8 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
 void add_verify_command(CLI::App& app, Action& chosen) {
   auto o = std::make_shared<VerifyCommandOptions>();
   CLI::App* cmd = app.add_subcommand("verify", "Measure the scallop and gouges a CL path leaves");
-  cmd->add_option("cage", o->cage, "Control cage (Wavefront OBJ, mm)")
+  cmd->add_option("cage", o->cage,
+                  "Control cage (Wavefront OBJ; units and orientation: --units, --up)")
       ->required()
       ->type_name("CAGE.obj");
   cmd->add_option("cl", o->cl, "CL data")->required()->type_name("PART.cl");
@@ -100,6 +106,7 @@ void add_verify_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--png", o->png, "Write the same picture as PNG");
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
+  add_setup_flags(*cmd, o->setup);
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_verify(*o, log); }; });
 }
 

@@ -146,6 +146,13 @@ Expected<void> check_tags(const Cage& cage,
                      "corner vertex out of range (0-based, " + std::to_string(n) + " vertices)");
     }
   }
+  for (const Hole& h : cage.holes) {
+    if (h.face < 0 || h.face >= cage.face_count()) {
+      return at_line(cage, h.line,
+                     "hole face " + std::to_string(h.face) + " out of range (0-based, " +
+                         std::to_string(cage.face_count()) + " faces)");
+    }
+  }
   return {};
 }
 

@@ -50,6 +50,10 @@ std::unique_ptr<osd::Far::TopologyRefiner> make_refiner(const Cage& cage) {
     corner_vertices.push_back(c.vertex);
     corner_weights.push_back(static_cast<float>(c.sharpness));
   }
+  std::vector<int> hole_faces;
+  for (const Hole& h : cage.holes) {
+    hole_faces.push_back(h.face);
+  }
   osd::Far::TopologyDescriptor desc;
   desc.numVertices = cage.vertex_count();
   desc.numFaces = cage.face_count();
@@ -61,9 +65,17 @@ std::unique_ptr<osd::Far::TopologyRefiner> make_refiner(const Cage& cage) {
   desc.numCorners = static_cast<int>(corner_weights.size());
   desc.cornerVertexIndices = corner_vertices.data();
   desc.cornerWeights = corner_weights.data();
+  desc.numHoles = static_cast<int>(hole_faces.size());
+  desc.holeIndices = hole_faces.data();
 
   osd::Sdc::Options sdc;
   sdc.SetVtxBoundaryInterpolation(to_sdc(cage.boundary));
+  sdc.SetCreasingMethod(cage.creasing == CreasingMethod::chaikin
+                            ? osd::Sdc::Options::CREASE_CHAIKIN
+                            : osd::Sdc::Options::CREASE_UNIFORM);
+  sdc.SetTriangleSubdivision(cage.triangles == TriangleRule::smooth
+                                 ? osd::Sdc::Options::TRI_SUB_SMOOTH
+                                 : osd::Sdc::Options::TRI_SUB_CATMARK);
   using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
   return std::unique_ptr<osd::Far::TopologyRefiner>(
       Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));

@@ -147,62 +147,92 @@ private:
     return {};
   }
 
-  // OpenSubdiv shape tag: `t name nint/nfloat/nstring ints... floats...`.
+  // OpenSubdiv shape tag: `t name nint/nfloat/nstring ints... floats... strings...`.
   Expected<void> tag(const std::vector<std::string_view>& words) {
     if (words.size() < 3) {
       return error("a tag needs a name and an argument count 'nint/nfloat/nstring'");
     }
     const std::string_view name = words[1];
-    std::vector<long> ints;
-    std::vector<double> floats;
-    if (auto parsed = tag_arguments(words, ints, floats); !parsed) {
+    TagArguments args;
+    if (auto parsed = tag_arguments(words, args); !parsed) {
       return parsed;
     }
     if (name == "crease") {
-      return crease(ints, floats);
+      return crease(args.ints, args.floats);
     }
     if (name == "corner") {
-      return corner(ints, floats);
+      return corner(args.ints, args.floats);
     }
     if (name == "interpolateboundary") {
-      return interpolate_boundary(ints);
+      return interpolate_boundary(args.ints);
+    }
+    if (name == "hole") {
+      return hole(args.ints);
+    }
+    if (name == "creasemethod") {
+      return crease_method(args.strings);
+    }
+    if (name == "smoothtriangles") {
+      return smooth_triangles(args.strings);
+    }
+    // Face-varying data (texture coordinates) does not change the shape, and the planner
+    // reads none.
+    if (name == "facevaryinginterpolateboundary" || name == "facevaryingpropagatecorners") {
+      return {};
+    }
+    if (name == "vertexedit" || name == "edgeedit") {
+      return error("tag '" + std::string(name) +
+                   "' is a hierarchical edit, which OpenSubdiv 3 does not evaluate: apply it "
+                   "in the modeller and export the edited cage");
     }
     return error("unsupported tag '" + std::string(name) +
-                 "' (crease, corner, interpolateboundary)");
+                 "' (crease, corner, hole, interpolateboundary, creasemethod, smoothtriangles, "
+                 "facevaryinginterpolateboundary, facevaryingpropagatecorners)");
   }
 
-  Expected<void> tag_arguments(const std::vector<std::string_view>& words, std::vector<long>& ints,
-                               std::vector<double>& floats) const {
+  struct TagArguments {
+    std::vector<long> ints;
+    std::vector<double> floats;
+    std::vector<std::string_view> strings;
+  };
+
+  Expected<void> tag_arguments(const std::vector<std::string_view>& words,
+                               TagArguments& args) const {
     const std::string_view counts = words[2];
     const auto slash1 = counts.find('/');
     const auto slash2 = counts.find('/', slash1 == std::string_view::npos ? slash1 : slash1 + 1);
     if (slash1 == std::string_view::npos || slash2 == std::string_view::npos) {
       return error("tag argument count '" + std::string(counts) + "' is not 'nint/nfloat/nstring'");
     }
-    const auto n_int = integer(counts.substr(0, slash1));
-    const auto n_float = integer(counts.substr(slash1 + 1, slash2 - slash1 - 1));
-    const auto n_string = integer(counts.substr(slash2 + 1));
-    if (!n_int || !n_float || !n_string || *n_int < 0 || *n_float < 0 || *n_string != 0) {
+    const auto n_int = parse_long(counts.substr(0, slash1));
+    const auto n_float = parse_long(counts.substr(slash1 + 1, slash2 - slash1 - 1));
+    const auto n_string = parse_long(counts.substr(slash2 + 1));
+    if (!n_int || !n_float || !n_string || *n_int < 0 || *n_float < 0 || *n_string < 0) {
       return error("tag argument count '" + std::string(counts) +
-                   "' must be non-negative integers with no strings");
+                   "' must be three non-negative integers");
     }
-    if (words.size() != 3 + static_cast<std::size_t>(*n_int + *n_float)) {
-      return error("tag declares " + std::to_string(*n_int + *n_float) + " arguments but has " +
+    const long declared = *n_int + *n_float + *n_string;
+    if (words.size() != 3 + static_cast<std::size_t>(declared)) {
+      return error("tag declares " + std::to_string(declared) + " arguments but has " +
                    std::to_string(words.size() - 3));
     }
-    for (long i = 0; i < *n_int; ++i) {
-      auto value = integer(words[3 + static_cast<std::size_t>(i)]);
+    std::size_t at = 3;
+    for (long i = 0; i < *n_int; ++i, ++at) {
+      auto value = integer(words[at]);
       if (!value) {
         return std::unexpected(value.error());
       }
-      ints.push_back(*value);
+      args.ints.push_back(*value);
     }
-    for (long i = 0; i < *n_float; ++i) {
-      auto value = number(words[3 + static_cast<std::size_t>(*n_int + i)]);
+    for (long i = 0; i < *n_float; ++i, ++at) {
+      auto value = number(words[at]);
       if (!value) {
         return std::unexpected(value.error());
       }
-      floats.push_back(*value);
+      args.floats.push_back(*value);
+    }
+    for (long i = 0; i < *n_string; ++i, ++at) {
+      args.strings.push_back(words[at]);
     }
     return {};
   }
@@ -251,6 +281,39 @@ private:
       return error("interpolateboundary takes one integer: 0 none, 1 edge only, 2 edge and corner");
     }
     cage_.boundary = static_cast<BoundaryInterpolation>(ints[0]);
+    return {};
+  }
+
+  // Face indices are 0-based, as crease and corner vertices are.
+  Expected<void> hole(const std::vector<long>& ints) {
+    if (ints.empty()) {
+      return error("hole needs at least one face index (0-based)");
+    }
+    for (const long face : ints) {
+      cage_.holes.push_back({static_cast<int>(face), line_});
+    }
+    return {};
+  }
+
+  Expected<void> crease_method(const std::vector<std::string_view>& strings) {
+    if (strings.size() == 1 && strings[0] == "normal") {
+      cage_.creasing = CreasingMethod::uniform;
+    } else if (strings.size() == 1 && strings[0] == "chaikin") {
+      cage_.creasing = CreasingMethod::chaikin;
+    } else {
+      return error("creasemethod takes one string: normal or chaikin");
+    }
+    return {};
+  }
+
+  Expected<void> smooth_triangles(const std::vector<std::string_view>& strings) {
+    if (strings.size() == 1 && strings[0] == "catmark") {
+      cage_.triangles = TriangleRule::catmark;
+    } else if (strings.size() == 1 && strings[0] == "smooth") {
+      cage_.triangles = TriangleRule::smooth;
+    } else {
+      return error("smoothtriangles takes one string: catmark or smooth");
+    }
     return {};
   }
 

@@ -1,7 +1,6 @@
 #include "job/cl_gate.hpp"
 
 #include "geometry/limit_surface.hpp"
-#include "geometry/obj_reader.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -9,7 +8,8 @@
 namespace subfeed::job {
 
 Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_path,
-                                           const cl::ClHeader& header, int level,
+                                           const cl::ClHeader& header, const std::string& cl_file,
+                                           const SetupFlags& setup, int level,
                                            double tolerance_mm) {
   const auto& cutter = header.cutter;
   if (!(cutter.diameter > 0.0) || std::abs(cutter.corner_radius - cutter.diameter / 2) > 1e-9) {
@@ -19,7 +19,7 @@ Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_pat
                             cutter.diameter, cutter.corner_radius),
                 {});
   }
-  SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(cage_path));
+  SUBFEED_TRY_ASSIGN(auto cage, read_part_agreed(cage_path, setup, header.setup, cl_file));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, level));
   return geometry::MotionGate::build(
       cage, surface,

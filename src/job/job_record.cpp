@@ -6,7 +6,7 @@
 
 #include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
-#include "geometry/obj_reader.hpp"
+#include "geometry/part_setup.hpp"
 #include "post/post_file.hpp"
 
 #include <algorithm>
@@ -102,8 +102,8 @@ Expected<JobSpec> cl_job_spec(const JobRecord& o, post::MachineConfig machine) {
                 {{}, 0, "--cage"});
   }
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(o.cage)); // the header, checked now
-  SUBFEED_TRY_ASSIGN(
-      auto gate, gate_for_cl(o.check_cage, reader.header(), o.plan.level, o.plan.gate_tolerance));
+  SUBFEED_TRY_ASSIGN(auto gate, gate_for_cl(o.check_cage, reader.header(), o.cage, o.setup,
+                                            o.plan.level, o.plan.gate_tolerance));
   auto post = post_options_for(machine, o);
   post.look_ahead = true; // the whole path exists: choose the start as `post` does
   JobSpec spec{.plan = std::nullopt,
@@ -113,6 +113,46 @@ Expected<JobSpec> cl_job_spec(const JobRecord& o, post::MachineConfig machine) {
                .files = job_files(o),
                .gate = std::move(gate)};
   return spec;
+}
+
+// " setup_up=y setup_scale=10 setup_origin=top-centre", each only where the job's command
+// line said it: a CL job's own setup record still decides the rest on resume.
+std::string setup_fields(const SetupFlags& said) {
+  const auto all = geometry::setup_text(said.with_defaults()); // "up=U scale=S origin=O"
+  std::string text;
+  std::string_view rest = all;
+  for (const bool given : {said.up.has_value(), said.scale.has_value(), said.origin.has_value()}) {
+    const auto end = std::min(rest.find(' '), rest.size());
+    if (given) {
+      const auto field = rest.substr(0, end);
+      const auto eq = field.find('=');
+      text += " setup_" + std::string(field.substr(0, eq + 1)) + escape(field.substr(eq + 1));
+    }
+    rest.remove_prefix(std::min(end + 1, rest.size()));
+  }
+  return text;
+}
+
+// Jobs from before setups were recorded have none of these fields: the model as it was.
+Expected<SetupFlags> setup_flags_of(const std::map<std::string, std::string, std::less<>>& fields,
+                                    const Where& where) {
+  SetupFlags said;
+  const auto field = [&](const char* key) { return fields.contains(std::string("setup_") + key); };
+  if (!field("up") && !field("scale") && !field("origin")) {
+    return said;
+  }
+  // Fill the unsaid fields with defaults so the text parses as a whole.
+  const auto whole = geometry::parse_setup_text(
+      fmt::format("up={} scale={} origin={}", field("up") ? fields.at("setup_up") : "z",
+                  field("scale") ? fields.at("setup_scale") : "1",
+                  field("origin") ? fields.at("setup_origin") : "model"));
+  if (!whole) {
+    return fail(ErrorCode::bad_input, "job record setup: " + whole.error().message, where);
+  }
+  said.up = field("up") ? std::optional(whole->up) : std::nullopt;
+  said.scale = field("scale") ? std::optional(whole->scale) : std::nullopt;
+  said.origin = field("origin") ? std::optional(*whole) : std::nullopt;
+  return said;
 }
 
 } // namespace
@@ -131,13 +171,15 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
     plan.fixed_axis = true; // a three-axis machine holds the tool vertical
     log.detail("three-axis machine: the tool axis stays vertical");
   }
-  SUBFEED_TRY_ASSIGN(auto cage, geometry::read_obj(o.cage));
+  const auto setup = o.setup.with_defaults();
+  SUBFEED_TRY_ASSIGN(auto cage, geometry::read_part(o.cage, setup));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, o.plan.level));
   auto post = post_options_for(machine, o);
   post.look_ahead = false; // the poses do not exist yet: the start follows the preferred tilt
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * plan.ball_radius, plan.ball_radius},
-                      !plan.fixed_axis};
+                      !plan.fixed_axis,
+                      geometry::setup_text(setup)};
   return JobSpec{.plan = PlanInput{std::move(cage), std::move(surface), plan},
                  .machine = std::move(machine),
                  .post = post,
@@ -148,16 +190,17 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
 
 std::string encode_job(const JobRecord& o) {
   const auto& p = o.plan;
-  return fmt::format(
-      "cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
-      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
-      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
-      "gate_tolerance={}",
-      escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
-      escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
-      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
-      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level, p.refine,
-      number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance));
+  return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
+                     "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
+                     "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
+                     "gate_tolerance={}{}",
+                     escape(o.cage), escape(o.machine),
+                     escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
+                     number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+                     number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
+                     number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
+                     p.refine, number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage),
+                     number(p.gate_tolerance), setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
@@ -217,6 +260,7 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
   if (fields.contains("gate_tolerance")) {
     o.plan.gate_tolerance = real("gate_tolerance");
   }
+  SUBFEED_TRY_ASSIGN(o.setup, setup_flags_of(fields, where));
   if (const auto it = fields.find("check_cage"); it != fields.end()) {
     o.check_cage = it->second;
   }

@@ -5,6 +5,7 @@
 #include "job/restart_approach.hpp"
 #include "job/restart_point.hpp"
 
+#include "cl/cl_reader.hpp"
 #include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
 #include "drivers/gcode_source.hpp"
@@ -248,6 +249,25 @@ Expected<drivers::StreamSummary> stream_dnc_rest(const Interrupted& r, Restart s
   options.restart_blocks = std::move(s.blocks);
   return drivers::stream_fanuc(*link.transport, program, options, &inbox, observer);
 }
+// A setup said on resume's command line must be the one the job ran with.
+Expected<void> setup_agrees(const ResumeRequest& o, const std::optional<JobRecord>& job) {
+  if (!o.setup.any()) {
+    return {};
+  }
+  if (!job) {
+    return fail(ErrorCode::usage, "the journal keeps no job, so no setup to check against",
+                {o.journal, 0, "--up"});
+  }
+  std::string recorded = geometry::setup_text(job->setup.with_defaults());
+  if (reads_cl(*job)) {
+    SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(job->cage));
+    SUBFEED_TRY_ASSIGN(const auto kept, agreed_setup(job->setup, reader.header().setup, job->cage));
+    recorded = geometry::setup_text(kept);
+  }
+  SUBFEED_TRY(agreed_setup(o.setup, recorded, o.journal));
+  return {};
+}
+
 } // namespace
 
 Expected<Interrupted> read_interrupted(const ResumeRequest& o, Logger& log) {
@@ -266,6 +286,7 @@ Expected<Interrupted> read_interrupted(const ResumeRequest& o, Logger& log) {
   if (r.journal.job) {
     SUBFEED_TRY_ASSIGN(r.job, decode_job(*r.journal.job, {o.journal, 0, "job"}));
   }
+  SUBFEED_TRY(setup_agrees(o, r.job));
   const std::string machine = !o.machine.empty() ? o.machine : r.job ? r.job->machine : "";
   if (machine.empty()) {
     return fail(ErrorCode::usage, "the journal names no machine", {{}, 0, "--machine"});

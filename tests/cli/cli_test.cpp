@@ -95,7 +95,10 @@ TEST_CASE("inspect reports the sample seat's extent") {
   const auto cage = source_dir + "/examples/seat.obj";
   CHECK(r.out == "cage " + cage +
                      ": 63 vertices, 48 faces (48 quads), 0 extraordinary vertices, 28 boundary "
-                     "edges, 0 creases, 0 corners, boundary edge only\n"
+                     "edges, 0 creases, 0 corners, 0 holes, boundary edge only, creasing normal, "
+                     "triangles catmark\n"
+                     "setup: up z, 1 mm per model unit, zero at the model's zero (program zero "
+                     "at model point 0.0000, 0.0000, 0.0000 mm)\n"
                      "limit surface: 48 patches, area 201.382 mm^2 (approximation level 4, 64 "
                      "samples per face edge)\n"
                      "  X    -8.8350 ..     8.8350 mm  (size 17.6700 mm)\n"

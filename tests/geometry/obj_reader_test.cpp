@@ -116,7 +116,22 @@ TEST_CASE("bad tags are errors naming the tag's line") {
       two_quads + "t interpolateboundary 1/0/0 3\n",
       "part.obj:9: interpolateboundary takes one integer: 0 none, 1 edge only, 2 edge and corner");
   expect_error(two_quads + "t holes 1/0/0 0\n",
-               "part.obj:9: unsupported tag 'holes' (crease, corner, interpolateboundary)");
+               "part.obj:9: unsupported tag 'holes' (crease, corner, hole, interpolateboundary, "
+               "creasemethod, smoothtriangles, facevaryinginterpolateboundary, "
+               "facevaryingpropagatecorners)");
+  expect_error(two_quads + "t hole 1/0/0 2\n",
+               "part.obj:9: hole face 2 out of range (0-based, 2 faces)");
+  expect_error(two_quads + "t hole 0/0/0\n",
+               "part.obj:9: hole needs at least one face index (0-based)");
+  expect_error(two_quads + "t creasemethod 0/0/1 sharp\n",
+               "part.obj:9: creasemethod takes one string: normal or chaikin");
+  expect_error(two_quads + "t smoothtriangles 1/0/0 1\n",
+               "part.obj:9: smoothtriangles takes one string: catmark or smooth");
+  expect_error(two_quads + "t vertexedit 0/0/1 x\n",
+               "part.obj:9: tag 'vertexedit' is a hierarchical edit, which OpenSubdiv 3 does not "
+               "evaluate: apply it in the modeller and export the edited cage");
+  expect_error(two_quads + "t hole 1/0/-1 0\n",
+               "part.obj:9: tag argument count '1/0/-1' must be three non-negative integers");
   expect_error(two_quads + "t crease 2-1-0 1 4 1\n",
                "part.obj:9: tag argument count '2-1-0' is not 'nint/nfloat/nstring'");
 }

@@ -87,7 +87,8 @@ TEST_CASE("the CL reader gives poses with kind, feed and source line") {
 TEST_CASE("what the CL writer writes the reader reads back to a nanometre") {
   TempDir dir;
   const auto path = dir.path() / "w.cl";
-  auto writer = cl::ClWriter::create(path, {"ROUND TRIP", {6.0, 3.0}, true});
+  auto writer = cl::ClWriter::create(
+      path, {"ROUND TRIP", {6.0, 3.0}, true, "up=y scale=10 origin=top-centre"});
   REQUIRE(writer);
   std::vector<cl::ClPose> written;
   for (int i = 0; i < 50; ++i) {
@@ -98,17 +99,20 @@ TEST_CASE("what the CL writer writes the reader reads back to a nanometre") {
                     i == 0 ? 0.0 : (i < 25 ? 800.0 : 1000.0),
                     0};
     pose.axis[2] = std::sqrt(1.0 - pose.axis[0] * pose.axis[0]);
-    writer->write(pose);
+    pose.line = writer->write(pose); // the line the setup record must not shift
     written.push_back(pose);
   }
   CHECK_FALSE(std::filesystem::exists(path)); // not before finish()
   REQUIRE(writer->finish());
   auto reader = cl::ClReader::open(path);
   REQUIRE(reader);
+  CHECK(reader->header().setup == "up=y scale=10 origin=top-centre");
+  CHECK(reader->header().part_name == "ROUND TRIP");
   for (const auto& w : written) {
     auto pose = reader->next();
     REQUIRE(pose);
     REQUIRE(*pose);
+    CHECK((*pose)->line == w.line);
     for (std::size_t i = 0; i < 3; ++i) {
       CHECK(std::abs((*pose)->tip[i] - w.tip[i]) <= 5e-7);
       CHECK(std::abs((*pose)->axis[i] - w.axis[i]) <= 1e-8);

@@ -33,6 +33,9 @@ struct ClHeader {
   std::string part_name;
   Cutter cutter;
   bool multiaxis = false; // MULTAX/ON: every GOTO carries the tool axis
+  // How the part was set up on the machine when planned ("up=y scale=10 origin=top-centre",
+  // geometry/part_setup.hpp), kept in a `PPRINT SETUP ...` record; empty when not recorded.
+  std::string setup;
 };
 
 } // namespace subfeed::cl

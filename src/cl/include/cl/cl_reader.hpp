@@ -1,7 +1,8 @@
 #pragma once
 // Reads APT-style CL data one pose at a time from a file, so memory does not depend on its
 // length. The grammar is exactly what ClWriter writes (README "CL data"): header records
-// PARTNO, UNITS/MM, CUTTER/d[,r,...], MULTAX[/ON|/OFF]; motion records RAPID, PLUNGE and
+// PARTNO, UNITS/MM, CUTTER/d[,r,...], MULTAX[/ON|/OFF], PPRINT text (PPRINT SETUP keeps the
+// part's setup); motion records RAPID, PLUNGE and
 // RETRACT (each for the next GOTO only), FEDRAT/f[,MMPM] (modal), GOTO/x,y,z[,i,j,k]; FINI
 // last; `$$` comments and blank lines anywhere. Anything else, a missing FINI (a truncated
 // file), a tool axis that is not a unit vector or a feed move before any FEDRAT is an error

@@ -1,9 +1,11 @@
 #pragma once
-// A Catmull-Clark control cage as read from a file: positions in mm, faces as vertex index
+// A Catmull-Clark control cage as read from a file: positions (mm once set up on the machine,
+// geometry/part_setup.hpp), faces as vertex index
 // loops (counter-clockwise seen from the side the tool comes from), semi-sharp creases and
-// corners, and how the boundary is interpolated. A Cage that came out of read_obj() is
-// manifold, consistently oriented, without degenerate or repeated faces and with finite
-// coordinates; `face_lines` keeps each face's source line for later error messages.
+// corners, holes, and the OpenSubdiv rules that shape it (boundary, creasing, triangles). A Cage
+// that came out of read_obj() is manifold, consistently oriented, without degenerate or repeated
+// faces and with finite coordinates; `face_lines` keeps each face's source line for later error
+// messages.
 
 #include <Eigen/Core>
 #include <span>
@@ -31,6 +33,23 @@ struct Corner {
   int line = 0;
 };
 
+struct Hole {
+  int face = 0; // 0-based cage face with no limit surface of its own
+  int line = 0;
+};
+
+// OpenSubdiv's `creasemethod`: how semi-sharp crease sharpness decays with each level.
+enum class CreasingMethod {
+  uniform, // "normal": every edge's sharpness drops by one per level
+  chaikin, // sharpness averaged along the crease, so it blends smoothly along its length
+};
+
+// OpenSubdiv's `smoothtriangles`: the rule for triangles in a Catmull-Clark cage.
+enum class TriangleRule {
+  catmark, // plain Catmull-Clark
+  smooth,  // a modified first level that makes triangles' limit surfaces smoother
+};
+
 struct Cage {
   std::string source; // file name for messages
   std::vector<Eigen::Vector3d> positions;
@@ -40,7 +59,10 @@ struct Cage {
   std::vector<int> face_lines;   // 1-based source line of each face
   std::vector<Crease> creases;
   std::vector<Corner> corners;
+  std::vector<Hole> holes;
   BoundaryInterpolation boundary = BoundaryInterpolation::edge_only;
+  CreasingMethod creasing = CreasingMethod::uniform;
+  TriangleRule triangles = TriangleRule::catmark;
 
   [[nodiscard]] int face_count() const { return static_cast<int>(face_sizes.size()); }
   [[nodiscard]] int vertex_count() const { return static_cast<int>(positions.size()); }

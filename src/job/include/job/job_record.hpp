@@ -8,6 +8,7 @@
 #include "job/job_pipeline.hpp"
 #include "job/logger.hpp"
 #include "job/plan_settings.hpp"
+#include "job/setup_flags.hpp"
 
 #include <filesystem>
 #include <string>
@@ -18,6 +19,7 @@ struct JobRecord {
   std::string cage;       // or CL data (.cl): then nothing is planned
   std::string check_cage; // with CL data: the cage its every move is checked against
   PlanSettings plan;
+  SetupFlags setup; // as given; a CL file's own record wins where it has one
   std::string machine;
   std::string output;  // BASE: BASE.cl, BASE.nc, BASE.journal; default the cage without .obj
   std::string journal; // default BASE.journal

@@ -17,6 +17,7 @@
 #include "job/controller_link.hpp"
 #include "job/job_record.hpp"
 #include "job/logger.hpp"
+#include "job/setup_flags.hpp"
 
 #include "drivers/control_inbox.hpp"
 #include "drivers/grbl_streamer.hpp"
@@ -37,6 +38,7 @@ struct ResumeRequest {
   double clearance = 0.0;   // mm; 0: the job's clearance, else the machine's retract
   double plunge_feed = 0.0; // mm/min; 0: the job's
   double connect_timeout_s = 5.0;
+  SetupFlags setup; // must agree with the job's, which a resume never changes
 };
 
 // What the journal and the job say: the program, where it stopped, the machine.

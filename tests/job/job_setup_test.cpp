@@ -1,0 +1,104 @@
+// The part's setup in a job: the job record keeps exactly what the command line said, reads
+// back to it, and a said setup meets a recorded one only where they agree.
+
+#include "job/job_record.hpp"
+#include "job/setup_flags.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace subfeed;
+using namespace subfeed::job;
+namespace g = subfeed::geometry;
+
+namespace {
+
+JobRecord job_with(const SetupFlags& setup) {
+  JobRecord o;
+  o.cage = "part with space.obj";
+  o.machine = "m.toml";
+  o.plan.tool = "ball:6";
+  o.plan.scallop = 0.02;
+  o.setup = setup;
+  return o;
+}
+
+g::PartSetup origin(const char* word) {
+  g::PartSetup s;
+  REQUIRE(g::parse_origin(word, s));
+  return s;
+}
+
+} // namespace
+
+TEST_CASE("a job record keeps the setup fields said, and only those") {
+  const std::vector<SetupFlags> said{
+      {},
+      {.up = g::UpAxis::y},
+      {.scale = 25.4},
+      {.origin = origin("top-centre")},
+      {.up = g::UpAxis::neg_x, .scale = 0.1 + 0.2, .origin = origin("-1.5,2e-3,7")},
+  };
+  for (const auto& flags : said) {
+    const auto text = encode_job(job_with(flags));
+    CAPTURE(text);
+    CHECK((text.find("setup_up=") != std::string::npos) == flags.up.has_value());
+    CHECK((text.find("setup_scale=") != std::string::npos) == flags.scale.has_value());
+    CHECK((text.find("setup_origin=") != std::string::npos) == flags.origin.has_value());
+    const auto back = decode_job(text, {"j.journal", 0, "job"});
+    REQUIRE(back);
+    CHECK(back->cage == "part with space.obj");
+    CHECK(back->setup.up == flags.up);
+    CHECK(back->setup.scale == flags.scale);
+    CHECK(back->setup.origin.has_value() == flags.origin.has_value());
+    CHECK(back->setup.with_defaults() == flags.with_defaults());
+  }
+}
+
+TEST_CASE("a damaged setup field in a job record is named") {
+  auto text = encode_job(job_with({.up = g::UpAxis::y}));
+  text.replace(text.find("setup_up=y"), 10, "setup_up=q");
+  const auto back = decode_job(text, {"j.journal", 0, "job"});
+  REQUIRE_FALSE(back);
+  CHECK(back.error().describe() ==
+        "j.journal: job: job record setup: up axis 'q' is not x, y, z, -x, -y or -z");
+}
+
+TEST_CASE("a said setup meets a recorded one field by field") {
+  const std::string recorded = "up=y scale=10 origin=top-centre";
+  SECTION("nothing recorded: the flags over the defaults") {
+    const auto s = agreed_setup({.scale = 10.0}, "", "a.cl");
+    REQUIRE(s);
+    CHECK(*s == g::PartSetup{g::UpAxis::z, 10.0, g::OriginKind::model, Eigen::Vector3d::Zero()});
+  }
+  SECTION("nothing said, or the same said: the recorded one") {
+    for (const auto& said :
+         {SetupFlags{}, SetupFlags{.up = g::UpAxis::y},
+          SetupFlags{.up = g::UpAxis::y, .scale = 10.0, .origin = origin("top-centre")}}) {
+      const auto s = agreed_setup(said, recorded, "a.cl");
+      REQUIRE(s);
+      CHECK(*s ==
+            g::PartSetup{g::UpAxis::y, 10.0, g::OriginKind::top_centre, Eigen::Vector3d::Zero()});
+    }
+  }
+  SECTION("a field said otherwise is named") {
+    const std::vector<std::pair<SetupFlags, std::string>> cases{
+        {{.up = g::UpAxis::z}, "--up"},
+        {{.scale = 1.0}, "--units/--scale"},
+        {{.origin = origin("model")}, "--origin"},
+        {{.origin = origin("0,0,0")}, "--origin"}};
+    for (const auto& [said, flag] : cases) {
+      const auto s = agreed_setup(said, recorded, "a.cl");
+      REQUIRE_FALSE(s);
+      CHECK(s.error().describe() == "a.cl: " + flag +
+                                        ": disagrees with the setup the part was planned in "
+                                        "(up=y scale=10 origin=top-centre): leave it out or "
+                                        "give the same");
+    }
+  }
+  SECTION("a damaged record is named") {
+    const auto s = agreed_setup({}, "up=y scale=ten origin=model", "a.cl");
+    REQUIRE_FALSE(s);
+    CHECK(s.error().describe() ==
+          "a.cl: setup 'up=y scale=ten origin=model': setup scale 'ten' is not a number above 0");
+  }
+}
