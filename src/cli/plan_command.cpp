@@ -38,10 +38,8 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage, o.plan.level));
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && log.verbosity() != Verbosity::quiet;
   PlanProgress progress(terminal);
-  progress.meshing();
-  SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(
-                                       cage, surface, options,
-                                       [&](int solve, int most) { progress.solve(solve, most); }));
+  SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(cage, surface, options,
+                                                                      progress.observer()));
   const std::string output =
       o.output.empty() ? std::filesystem::path(o.cage).replace_extension(".cl").string() : o.output;
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
@@ -108,6 +106,7 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          s.parallel_price));
   }
   log.info(gate_summary(s.gate));
+  log.detail(time_summary(s.times, s.solves));
   report_left_material(s, log);
   return {};
 }

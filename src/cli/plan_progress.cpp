@@ -25,12 +25,24 @@ void PlanProgress::show(const std::string& text, bool always) {
   std::fflush(stderr);
 }
 
-void PlanProgress::meshing() {
-  show("meshing the limit surface", true);
+geometry::PlanObserver PlanProgress::observer() {
+  return {[this](geometry::PlanStage s) { stage(s); },
+          [this](int solve_number, int most) { solve(solve_number, most); }};
+}
+
+void PlanProgress::stage(geometry::PlanStage stage) {
+  show(std::string(geometry::stage_name(stage)), true);
 }
 
 void PlanProgress::solve(int solve, int most) {
-  show(fmt::format("deformation solve {} (at most {})", solve, most), solve == 1);
+  const auto now = std::chrono::steady_clock::now();
+  if (solve <= 1) {
+    solves_start_ = now;
+  }
+  const double spent = std::chrono::duration<double>(now - solves_start_).count();
+  const std::string eta =
+      solve > 1 ? "at most " + clock_text(spent / (solve - 1) * (most - solve + 1)) : "--:--";
+  show(fmt::format("deformation solve {} of at most {}  ETA {}", solve, most, eta), solve == 1);
 }
 
 void PlanProgress::plane(long plane, long planes) {

@@ -107,6 +107,26 @@ std::string thinner_note(const geometry::PlanSummary& s) {
 
 } // namespace
 
+std::string time_summary(const geometry::PlanTimes& t, int solves) {
+  using geometry::PlanStage;
+  std::string text = "  time:";
+  for (std::size_t i = 0; i < geometry::plan_stage_count; ++i) {
+    const auto stage = static_cast<PlanStage>(i);
+    if (stage == PlanStage::directions && t[stage] == 0.0) {
+      continue; // no pricing asked for
+    }
+    text += fmt::format("{} {} {:.2f} s", i == 0 ? "" : ",", geometry::stage_name(stage), t[stage]);
+    if (stage == PlanStage::deformation && solves > 0) {
+      text += fmt::format(" ({} solves)", solves);
+    }
+    if (stage == PlanStage::slicing) {
+      text += fmt::format(" (motion gate checks {:.2f} s, handing poses on {:.2f} s)",
+                          t.gate_checks_s, t.sink_s);
+    }
+  }
+  return text + fmt::format("; {:.2f} s in all", t.total_s());
+}
+
 void report_left_material(const geometry::PlanSummary& s, Logger& log) {
   const auto places = places_left(s);
   if (places.empty()) {

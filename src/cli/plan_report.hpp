@@ -1,6 +1,7 @@
 #pragma once
 // What a plan tells the user beyond its totals: where the ball cannot reach, so that
-// material will be left there, and what the motion gate checked (plan and run both say it).
+// material will be left there, what the motion gate checked and where the time went (plan and run
+// both say it).
 
 #include "geometry/toolpath_planner.hpp"
 #include "job/logger.hpp"
@@ -15,6 +16,9 @@ using job::Logger;
 // the ball, CL points lifted clear of the part): a warning locating each place, thickest
 // first. Otherwise one line saying none, with what stays under H.
 void report_left_material(const geometry::PlanSummary& summary, Logger& log);
+
+// Where the plan's time went, stage by stage ("time: meshing 0.41 s, ..."): for --verbose.
+[[nodiscard]] std::string time_summary(const geometry::PlanTimes& times, int solves);
 
 // The motion gate's line of the summary: how many moves it checked, and against what.
 [[nodiscard]] std::string gate_summary(const geometry::GateReport& gate);

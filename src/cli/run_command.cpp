@@ -68,6 +68,9 @@ void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter&
                        "{:.1f} min",
                        files.cl.string(), t.plan.passes, t.cut_mm, files.nc.string(), t.lines,
                        t.machine_min));
+  if (t.plan.times.total_s() > 0.0) { // planned here, not read from CL data
+    log.detail(time_summary(t.plan.times, t.plan.solves));
+  }
   if (reporter.first_block_s() && reporter.first_move_s()) {
     log.info(fmt::format("  first block reached the controller {:.3f} s after start, the first "
                          "move {:.3f} s after start",

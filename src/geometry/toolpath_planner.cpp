@@ -49,29 +49,51 @@ ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGa
 
 Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const LimitSurface& surface,
                                                    const PlanOptions& options,
-                                                   const SolveProgress& progress) {
+                                                   const PlanObserver& observer) {
+  PlanTimes times;
+  const auto enter = [&](PlanStage stage) {
+    if (observer.stage) {
+      observer.stage(stage);
+    }
+    return StageClock(times[stage]);
+  };
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
-  const auto rates = rates_for_tolerance(surface, chord, options.max_rate);
-  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
+  SUBFEED_TRY_ASSIGN(auto mesh, [&] {
+    const auto clock = enter(PlanStage::meshing);
+    return mesh_surface(cage, surface, rates_for_tolerance(surface, chord, options.max_rate));
+  }());
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
   const double gate_tolerance =
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
-  SUBFEED_TRY_ASSIGN(auto gate,
-                     MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}));
+  SUBFEED_TRY_ASSIGN(auto gate, [&] {
+    const auto clock = enter(PlanStage::gate_mesh);
+    return MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance});
+  }());
   ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
   planner.chord_tolerance_ = chord;
-  planner.place_cl_points();
-  planner.index_triangles();
+  {
+    const StageClock clock(times[PlanStage::meshing]); // the ball centres over the mesh
+    planner.place_cl_points();
+    planner.index_triangles();
+  }
   DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
-    SUBFEED_TRY_ASSIGN(choice, planner.price_directions(progress));
+    const auto clock = enter(PlanStage::directions);
+    SUBFEED_TRY_ASSIGN(choice, planner.price_directions(observer.solve));
   }
   planner.face(options.choose_direction ? choice.direction_deg : options.direction_deg);
   const auto intervals =
       pass_intervals(planner.mesh_, options.ball_radius, options.scallop, planner.s_);
-  SUBFEED_TRY(planner.deform(intervals, std::move(choice), progress));
-  planner.summarise(intervals);
-  planner.set_link_limits(std::ranges::max(intervals.cl_spacing));
+  {
+    const auto clock = enter(PlanStage::deformation);
+    SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve));
+  }
+  {
+    const auto clock = enter(PlanStage::clearing);
+    planner.summarise(intervals);
+    planner.set_link_limits(std::ranges::max(intervals.cl_spacing));
+  }
+  planner.summary_.times = times;
   return planner;
 }
 
@@ -270,7 +292,12 @@ std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& p
 }
 
 Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
-  if (auto checked = gate_.check(pose); !checked) {
+  if (auto checked =
+          [&] {
+            const StageClock clock(summary_.times.gate_checks_s);
+            return gate_.check(pose);
+          }();
+      !checked) {
     rejected_ = pose;
     return checked;
   }
@@ -279,6 +306,7 @@ Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
     (pose.kind == cl::MoveKind::feed ? summary_.cut_length : summary_.link_length) += d;
   }
   last_ = pose;
+  const StageClock clock(summary_.times.sink_s);
   return sink(pose);
 }
 
@@ -623,6 +651,7 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth,
 }
 
 Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
+  const StageClock clock(summary_.times[PlanStage::slicing]);
   MeshSlicer slicer(mesh_.triangles, deformation_.deformed);
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;

@@ -143,8 +143,37 @@ TEST_CASE("plan shows its progress on a terminal and erases it before the summar
       return has_line_matching(f, R"(planning \d\d:\d\d  )" + pattern);
     });
   };
-  CHECK(any_frame(literal("deformation solve 1 (at most 60)")));
+  // Every stage of the planner shows as it starts.
+  for (const auto* stage :
+       {"meshing for the motion gate", "deformation solves", "clearing the ball"}) {
+    CHECK(any_frame(literal(stage)));
+  }
+  CHECK(any_frame(literal("deformation solve 1 of at most 60  ETA --:--")));
   CHECK(any_frame(R"(\[[#.]+\] +\d+\.\d%  plane \d+ of \d+  ETA (\d\d:\d\d|--:--))"));
+}
+
+TEST_CASE("plan --verbose says where the time went, stage by stage") {
+  TempDir dir;
+  const auto cl = (dir.path() / "dome.cl").string();
+  const auto r = run_process({bin, "--verbose", "plan", source_dir + "/examples/dome.obj", "--tool",
+                              "ball:6", "--scallop", "0.05", "--tolerance", "0.002", "-o", cl});
+  CHECK(r.exit_code == 0);
+  const std::string s = R"(([0-9]+\.[0-9]{2}) s)";
+  const auto times = line_captures(
+      r.out, "  time: meshing the limit surface " + s + ", meshing for the motion gate " + s +
+                 ", deformation solves " + s + R"( \(\d+ solves\), clearing the ball )" + s +
+                 ", slicing and linking " + s + " \\(motion gate checks " + s +
+                 ", handing poses on " + s + "\\); " + s + " in all");
+  REQUIRE(times.size() == 9); // the whole line, then each figure
+  const auto figure = [&](std::size_t i) { return std::stod(times[i + 1]); };
+  double stages = 0.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    stages += figure(i);
+  }
+  // The parts add up (to the rounding of each figure), and the gate and sink are within slicing.
+  CHECK(std::abs(stages - figure(7)) <= 0.03);
+  CHECK(figure(5) + figure(6) <= figure(4) + 0.01);
+  CHECK(figure(7) > 0.0);
 }
 
 namespace {

@@ -79,7 +79,10 @@ std::vector<std::string> plan(const std::string& cage, const std::string& cl) {
 
 } // namespace
 
-TEST_CASE("a cage modelled in any orientation and unit plans the path of the part set up") {
+// Whole sample-part plans and measurements run in the release build only (label parts); the
+// refusals below run in both, on CL data made by hand.
+TEST_CASE("a cage modelled in any orientation and unit plans the path of the part set up",
+          "[parts][slow]") {
   const TempDir dir;
   const auto reference = (dir.path() / "ref.cl").string();
   REQUIRE(run_process(plan(dome, reference)).exit_code == 0);
@@ -111,77 +114,73 @@ TEST_CASE("a cage modelled in any orientation and unit plans the path of the par
   }
 }
 
-TEST_CASE("verify, post and check use the CL file's setup and refuse one that contradicts it") {
+TEST_CASE("verify and post --cage on a set-up part measure and check what was planned",
+          "[parts][slow]") {
   const TempDir dir;
   const auto cage = dir.write("dome-cm.obj", remodelled({"y", "cm", 10.0}));
   const auto cl = (dir.path() / "dome.cl").string();
   auto argv = plan(cage.string(), cl);
   argv.insert(argv.end(), {"--up", "y", "--units", "cm"});
   REQUIRE(run_process(argv).exit_code == 0);
-  const std::string kept = "(up=y scale=10 origin=model): leave it out or give the same\n";
+  // Set up as planned, the path measures exactly as the millimetre Z-up model's own.
+  const auto reference = (dir.path() / "ref.cl").string();
+  REQUIRE(run_process(plan(dome, reference)).exit_code == 0);
+  const auto want =
+      run_process({bin, "verify", dome, reference, "--tool", "ball:6", "--spacing", "0.5"});
+  const auto got =
+      run_process({bin, "verify", cage.string(), cl, "--tool", "ball:6", "--spacing", "0.5"});
+  CHECK(got.exit_code == 0);
+  const auto want_lines = split_lines(want.out);
+  const auto got_lines = split_lines(got.out);
+  REQUIRE(got_lines.size() == 6);
+  REQUIRE(want_lines.size() == 6);
+  CHECK(got_lines[0].substr(got_lines[0].find(':')) ==
+        want_lines[0].substr(want_lines[0].find(':')));
+  for (std::size_t i = 1; i < got_lines.size(); ++i) {
+    CHECK(got_lines[i] == want_lines[i]);
+  }
+  // The gate checks the set-up part: the plan's own 5 um (2.5 x its 2 um tolerance) holds.
+  const auto nc = (dir.path() / "dome.nc").string();
+  const auto posted = run_process({bin, "post", cl, "--machine", grblhal, "--cage", cage.string(),
+                                   "--units", "cm", "--gate-tolerance", "0.005", "-o", nc});
+  CHECK(posted.exit_code == 0);
+  CHECK(posted.out.find("no cut deeper than 5 um, no rapid touching it\n") != std::string::npos);
+}
 
-  SECTION("verify") {
-    // Set up as planned, the path measures exactly as the millimetre Z-up model's own.
-    const auto reference = (dir.path() / "ref.cl").string();
-    REQUIRE(run_process(plan(dome, reference)).exit_code == 0);
-    const auto want =
-        run_process({bin, "verify", dome, reference, "--tool", "ball:6", "--spacing", "0.5"});
-    const auto got =
-        run_process({bin, "verify", cage.string(), cl, "--tool", "ball:6", "--spacing", "0.5"});
-    CHECK(got.exit_code == 0);
-    const auto want_lines = split_lines(want.out);
-    const auto got_lines = split_lines(got.out);
-    REQUIRE(got_lines.size() == 6);
-    REQUIRE(want_lines.size() == 6);
-    CHECK(got_lines[0].substr(got_lines[0].find(':')) ==
-          want_lines[0].substr(want_lines[0].find(':')));
-    for (std::size_t i = 1; i < got_lines.size(); ++i) {
-      CHECK(got_lines[i] == want_lines[i]);
-    }
-    const auto bad =
-        run_process({bin, "verify", cage.string(), cl, "--tool", "ball:6", "--up", "z"});
-    CHECK(bad.exit_code == 2);
-    CHECK(bad.err == "subfeed: error: " + cl +
-                         ": --up: disagrees with the setup the part was planned in " + kept);
-  }
-  SECTION("post") {
-    const auto nc = (dir.path() / "dome.nc").string();
-    const auto ok = run_process({bin, "post", cl, "--machine", grblhal, "--cage", cage.string(),
-                                 "--units", "cm", "--gate-tolerance", "0.005", "-o", nc});
-    CHECK(ok.exit_code == 0);
-    CHECK(ok.out.find("no cut deeper than 5 um, no rapid touching it\n") != std::string::npos);
-    std::filesystem::remove(nc);
-    const auto bad = run_process(
-        {bin, "post", cl, "--machine", grblhal, "--cage", cage.string(), "--scale", "1", "-o", nc});
-    CHECK(bad.exit_code == 2);
-    CHECK(bad.err == "subfeed: error: " + cl +
-                         ": --units/--scale: disagrees with the setup the part was planned in " +
-                         kept);
-    CHECK_FALSE(std::filesystem::exists(nc));
-    const auto no_cage =
-        run_process({bin, "post", cl, "--machine", grblhal, "--origin", "top-centre", "-o", nc});
-    CHECK(no_cage.exit_code == 2);
-    CHECK(no_cage.err == "subfeed: error: " + cl +
-                             ": --origin: disagrees with the setup the part was planned in " +
-                             kept);
-    CHECK_FALSE(std::filesystem::exists(nc));
-  }
-  SECTION("check") {
-    const auto nc = (dir.path() / "dome.nc").string();
-    REQUIRE(run_process({bin, "post", cl, "--machine", grblhal, "-o", nc}).exit_code == 0);
-    CHECK(
-        run_process({bin, "check", nc, "--machine", grblhal, "--cl", cl, "--up", "y"}).exit_code ==
+TEST_CASE("verify, post and check refuse a setup that contradicts the CL file's") {
+  const TempDir dir;
+  // Two poses over the dome, in a CL file that says how the part was set up.
+  const auto cl = dir.write("kept.cl", "PARTNO KEPT\nUNITS/MM\nCUTTER/6,3\nMULTAX/ON\n"
+                                       "PPRINT SETUP up=y scale=10 origin=model\n"
+                                       "RAPID\nGOTO/0,0,40,0,0,1\nFEDRAT/500\n"
+                                       "GOTO/0,0,30,0,0,1\nFINI\n")
+                      .string();
+  const auto cage = dir.write("dome-cm.obj", remodelled({"y", "cm", 10.0})).string();
+  const std::string kept = "(up=y scale=10 origin=model): leave it out or give the same\n";
+  const auto refused = [&](const std::vector<std::string>& argv, const std::string& flag) {
+    const auto r = run_process(argv);
+    CAPTURE(argv);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "subfeed: error: " + cl + ": " + flag +
+                       ": disagrees with the setup the part was planned in " + kept);
+  };
+  refused({bin, "verify", cage, cl, "--tool", "ball:6", "--up", "z"}, "--up");
+  const auto nc = (dir.path() / "kept.nc").string();
+  refused({bin, "post", cl, "--machine", grblhal, "--cage", cage, "--scale", "1", "-o", nc},
+          "--units/--scale");
+  refused({bin, "post", cl, "--machine", grblhal, "--origin", "top-centre", "-o", nc}, "--origin");
+  CHECK_FALSE(std::filesystem::exists(nc));
+  // The same flags as kept are taken, and the CL file's setup is used without them.
+  REQUIRE(
+      run_process({bin, "post", cl, "--machine", grblhal, "--up", "y", "--units", "cm", "-o", nc})
+          .exit_code == 0);
+  CHECK(run_process({bin, "check", nc, "--machine", grblhal, "--cl", cl, "--up", "y"}).exit_code ==
         0);
-    const auto bad =
-        run_process({bin, "check", nc, "--machine", grblhal, "--cl", cl, "--up", "-y"});
-    CHECK(bad.exit_code == 2);
-    CHECK(bad.err == "subfeed: error: " + cl +
-                         ": --up: disagrees with the setup the part was planned in " + kept);
-    const auto no_cl = run_process({bin, "check", nc, "--machine", grblhal, "--up", "y"});
-    CHECK(no_cl.exit_code == 1);
-    CHECK(no_cl.err == "subfeed: error: --cl: a setup is checked against the CL data's own "
-                       "record: give --cl as well\n");
-  }
+  refused({bin, "check", nc, "--machine", grblhal, "--cl", cl, "--up", "-y"}, "--up");
+  const auto no_cl = run_process({bin, "check", nc, "--machine", grblhal, "--up", "y"});
+  CHECK(no_cl.exit_code == 1);
+  CHECK(no_cl.err == "subfeed: error: --cl: a setup is checked against the CL data's own "
+                     "record: give --cl as well\n");
 }
 
 TEST_CASE("bad setup words are refused in one line naming the flag") {

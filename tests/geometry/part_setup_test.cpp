@@ -82,10 +82,12 @@ TEST_CASE("every up axis, unit and origin puts the part back where it was, moved
       const Eigen::Vector3d want = original->positions[v] - zero;
       REQUIRE((cage.positions[v] - want).norm() < 1e-9 * (1 + want.norm()));
     }
-    const auto after = summary_of(cage);
-    CHECK((after.min - (extent.min - zero)).norm() < 1e-9);
-    CHECK((after.max - (extent.max - zero)).norm() < 1e-9);
-    CHECK(after.area == Approx(extent.area).epsilon(1e-12));
+    if (word == "min-corner") { // the surface moved with its cage (once: it costs a summary)
+      const auto after = summary_of(cage);
+      CHECK(after.min.norm() < 1e-9);
+      CHECK((after.max - (extent.max - zero)).norm() < 1e-9);
+      CHECK(after.area == Approx(extent.area).epsilon(1e-12));
+    }
   }
 }
 

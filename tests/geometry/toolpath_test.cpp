@@ -34,25 +34,32 @@ std::string cl_name(double stay_down) {
   return "stay-down-" + std::to_string(static_cast<int>(stay_down * 10)) + ".cl";
 }
 
-// The grid bowl's plans: ball 3 mm, H 0.03 mm.
-geometry::PlanOptions bowl_options() {
+// The grid bowl's plans: ball 3 mm, H 0.03 mm; `tolerance` 1 um for the whole-part plans
+// (release build only), coarser for their twins that the sanitizer build runs too.
+geometry::PlanOptions bowl_options(double tolerance = 0.001) {
   geometry::PlanOptions options;
   options.ball_radius = 3.0;
   options.scallop = 0.03;
-  options.tolerance = 0.001;
+  options.tolerance = tolerance;
   return options;
 }
+
+// The coarse twins' tolerance and sample spacing: the same code paths at a sixth of the cost
+// (2 um is the coarsest that keeps the scallop within 5 % here: at 4 um it is 7.8 % over);
+// the gouge bound is the motion gate's for that tolerance (2.5 times it).
+constexpr double coarse_tolerance = 0.002;
+constexpr double coarse_spacing = 0.5;
 
 // The grid bowl (limit surface z = 0.04 x^2 + 0.01 y^2) planned into dir/name and measured
 // every 0.25 mm.
 subfeed::testing::PlannedPath plan_bowl(const TempDir& dir, const geometry::PlanOptions& options,
-                                        const std::string& name) {
+                                        const std::string& name, double spacing = 0.25) {
   const auto cage = subfeed::testing::grid_cage(6, 5.0, 0.04, 0.01);
   const auto surface = surface_of(cage);
   geometry::VerifyOptions verify;
   verify.ball_radius = 3.0;
   verify.scallop_target = 0.03;
-  verify.sample_spacing = 0.25;
+  verify.sample_spacing = spacing;
   return subfeed::testing::plan_and_verify(cage, surface, options, verify, dir.path() / name);
 }
 
@@ -139,7 +146,7 @@ TEST_CASE("slice points map back exactly: every point lies on its level and its 
 
 TEST_CASE("plan on a bowl: scallop within 5 % of the target, no gouge over 1 um, shorter than the "
           "baseline",
-          "[slow]") {
+          "[parts][slow]") {
   TempDir dir;
   const auto plan = [&](bool baseline) {
     auto options = bowl_options();
@@ -275,7 +282,7 @@ TEST_CASE("mesh edges: each once, sorted, with the triangles on it") {
 }
 
 TEST_CASE("stay-down links: neighbouring passes reached by feed along the surface, no gouge",
-          "[slow]") {
+          "[parts][slow]") {
   TempDir dir;
   const auto plan = [&](double stay_down) {
     auto options = bowl_options();
@@ -293,5 +300,47 @@ TEST_CASE("stay-down links: neighbouring passes reached by feed along the surfac
   CHECK(staying.plan.cut_length ==
         Approx(retracting.plan.cut_length + staying.plan.stay_down_length).epsilon(1e-9));
   CHECK(staying.report.max_gouge <= 1e-3);
+  CHECK(staying.report.max_scallop <= 1.05 * 0.03);
+}
+
+TEST_CASE("a coarse plan on a bowl: scallop within 5 %, no gouge past the gate's bound, shorter "
+          "than the baseline") {
+  TempDir dir;
+  const auto plan = [&](bool baseline) {
+    auto options = bowl_options(coarse_tolerance);
+    options.baseline = baseline;
+    return plan_bowl(dir, options, baseline ? "baseline.cl" : "deformed.cl", coarse_spacing).report;
+  };
+  const auto deformed = plan(false);
+  const auto baseline = plan(true);
+  INFO("deformed max " << deformed.max_scallop << " gouge " << deformed.max_gouge << " cutting "
+                       << deformed.cutting_length << "; baseline max " << baseline.max_scallop
+                       << " cutting " << baseline.cutting_length);
+  CHECK(deformed.max_scallop <= 1.05 * 0.03);
+  CHECK(deformed.max_scallop >= 0.5 * 0.03);
+  CHECK(deformed.max_gouge <= 2.5 * coarse_tolerance);
+  CHECK(baseline.max_scallop <= 1.05 * 0.03);
+  CHECK(deformed.cutting_length < baseline.cutting_length);
+  CHECK(deformed.uncut_samples * 1000 <= deformed.samples);
+}
+
+TEST_CASE("coarse stay-down links: neighbouring passes reached by feed along the surface") {
+  TempDir dir;
+  const auto plan = [&](double stay_down) {
+    auto options = bowl_options(coarse_tolerance);
+    options.stay_down = stay_down;
+    return plan_bowl(dir, options, cl_name(stay_down), coarse_spacing);
+  };
+  const auto retracting = plan(0.0);
+  const auto staying = plan(3.0);
+  INFO("links " << retracting.plan.link_length << " mm retracting, " << staying.plan.link_length
+                << " mm with " << staying.plan.stay_down_links << " stay-down links; gouge "
+                << staying.report.max_gouge);
+  CHECK(retracting.plan.stay_down_links == 0);
+  CHECK(staying.plan.stay_down_links * 2 > staying.plan.passes);
+  CHECK(staying.plan.link_length < 0.7 * retracting.plan.link_length);
+  CHECK(staying.plan.cut_length ==
+        Approx(retracting.plan.cut_length + staying.plan.stay_down_length).epsilon(1e-9));
+  CHECK(staying.report.max_gouge <= 2.5 * coarse_tolerance);
   CHECK(staying.report.max_scallop <= 1.05 * 0.03);
 }

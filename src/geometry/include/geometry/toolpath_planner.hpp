@@ -37,6 +37,7 @@
 #include "geometry/motion_gate.hpp"
 #include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
+#include "geometry/plan_stages.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/triangle_tree.hpp"
@@ -118,6 +119,7 @@ struct PlanSummary {
   long stay_down_links = 0;                 // links made by feed along the surface
   double stay_down_length = 0.0;            // mm of them (counted in cut_length)
   GateReport gate;                          // what the motion gate checked, once run() has finished
+  PlanTimes times;                          // where the time went (slicing once run() has finished)
 
   [[nodiscard]] bool rings() const { return !ring_centres.empty(); } // concentric passes cut
 };
@@ -127,11 +129,12 @@ public:
   using Sink = std::function<Expected<void>(const cl::ClPose&)>;
   using Progress = std::function<void(long plane, long planes)>;
 
-  // Meshes, offsets, computes intervals and solves the deformation (`progress`: each solve).
+  // Meshes, offsets, computes intervals and solves the deformation (`observer`: each stage
+  // as it starts, each solve).
   [[nodiscard]] static Expected<ToolpathPlanner> prepare(const Cage& cage,
                                                          const LimitSurface& surface,
                                                          const PlanOptions& options,
-                                                         const SolveProgress& progress = {});
+                                                         const PlanObserver& observer = {});
   // Slices plane after plane and hands every pose to `sink` as soon as its pass is done.
   [[nodiscard]] Expected<void> run(const Sink& sink, const Progress& progress = {});
 
