@@ -65,7 +65,9 @@ geometry::Cage subdivided(const geometry::Cage& cage, int levels) {
   using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
   std::unique_ptr<osd::Far::TopologyRefiner> refiner(
       Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
-  refiner->RefineUniform(osd::Far::TopologyRefiner::UniformOptions(levels));
+  osd::Far::TopologyRefiner::UniformOptions uniform(levels);
+  uniform.fullTopologyInLastLevel = true; // its edges, for the creases
+  refiner->RefineUniform(uniform);
   std::vector<Point> points(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
   for (int v = 0; v < cage.vertex_count(); ++v) {
     points[static_cast<std::size_t>(v)].p = cage.positions[static_cast<std::size_t>(v)];
@@ -107,6 +109,7 @@ struct Measured {
 
 // Runs `work` in a child process, stopped after `limit_s`: its wall time and peak memory.
 template <class Work> Measured in_child(double limit_s, Work&& work) {
+  std::fflush(stdout); // or the child's copy of the buffer is printed twice
   const auto start = std::chrono::steady_clock::now();
   const pid_t child = fork();
   if (child == 0) {
