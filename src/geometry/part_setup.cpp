@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <fmt/format.h>
 #include <utility>
 
