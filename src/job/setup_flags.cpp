@@ -16,10 +16,6 @@ geometry::PartSetup SetupFlags::with_defaults() const {
   return s;
 }
 
-SetupFlags flags_of(const geometry::PartSetup& setup) {
-  return {.up = setup.up, .scale = setup.scale, .origin = setup};
-}
-
 Expected<geometry::PartSetup> agreed_setup(const SetupFlags& said, const std::string& recorded,
                                            const std::string& recorded_in) {
   if (recorded.empty()) {

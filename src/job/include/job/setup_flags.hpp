@@ -23,9 +23,6 @@ struct SetupFlags {
   [[nodiscard]] geometry::PartSetup with_defaults() const;
 };
 
-// Every field set: what a record or CL header keeps, as flags.
-[[nodiscard]] SetupFlags flags_of(const geometry::PartSetup& setup);
-
 // The setup a command uses when its input records one (`recorded`, setup text, from
 // `recorded_in`, a file): the recorded one, refused with the flag named when a said field
 // differs. With nothing recorded (CL data from elsewhere, or older): the flags'.
