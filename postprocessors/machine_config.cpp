@@ -315,4 +315,22 @@ Expected<MachineConfig> load_machine_config(const std::filesystem::path& path) {
   return parse_machine_config(text.str(), path.string());
 }
 
+std::optional<double> tilt_range_deg(const MachineConfig& machine) {
+  const std::size_t tilt = tilt_axis(machine.kinematics);
+  const auto& a = machine.axes[tilt];
+  const auto& c = machine.axes[5];
+  if (tilt == 0 || !a || !c) {
+    return std::nullopt;
+  }
+  if (a->cyclic) {
+    return 180.0;
+  }
+  const double near = std::min(std::abs(a->min), std::abs(a->max));
+  const double far = std::max(std::abs(a->min), std::abs(a->max));
+  const bool whole_turn = c->cyclic || c->max - c->min >= 360.0;
+  // One-sided travel (min and max of one sign) leans only one way: C must turn it round.
+  const bool both_signs = a->min <= 0.0 && a->max >= 0.0;
+  return std::min(180.0, whole_turn ? far : (both_signs ? near : 0.0));
+}
+
 } // namespace subfeed::post

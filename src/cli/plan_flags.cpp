@@ -19,6 +19,12 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
       ->check(CLI::Range(1e-3, 1000.0));
   cmd.add_option("--axis", o.axis, "Tool axis: normal (five axes) or fixed (vertical, three axes)")
       ->check(CLI::IsMember({"normal", "fixed"}));
+  cmd.add_option("--max-tilt", o.max_tilt,
+                 "Largest tool tilt from vertical, degrees: steeper surface, and surface hidden "
+                 "under the part, is left uncut and reported (default: the machine's tilt range "
+                 "with --machine, else 90)")
+      ->type_name("DEG")
+      ->check(CLI::Range(0.0, 180.0));
   cmd.add_flag("--one-way", o.one_way, "Cut every pass in the same direction (default zig-zag)");
   cmd.add_option("--feed", o.feed, "Cutting feed, mm/min")->check(CLI::Range(1.0, 100000.0));
   cmd.add_option("--plunge-feed", o.plunge_feed, "Plunge feed, mm/min")

@@ -127,7 +127,52 @@ std::string time_summary(const geometry::PlanTimes& t, int solves) {
   return text + fmt::format("; {:.2f} s in all", t.total_s());
 }
 
+namespace {
+
+std::string describe(const geometry::ReachRegion& r) {
+  const Eigen::Vector3d size = r.high - r.low;
+  std::string why;
+  if (r.tilted > 0) {
+    why = fmt::format("normals up to {:.1f} deg from +Z", r.steepest_deg);
+  }
+  if (r.hidden > 0) {
+    why += fmt::format("{}{} surface vertices hidden under the part", why.empty() ? "" : ", ",
+                       r.hidden);
+  }
+  return fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm, over {:.2f} x {:.2f} x {:.2f} mm: "
+                     "{:.1f} mm^2, {}",
+                     shown_mm(r.centroid.x()), shown_mm(r.centroid.y()), shown_mm(r.centroid.z()),
+                     size.x(), size.y(), size.z(), r.area_mm2, why);
+}
+
+} // namespace
+
+void report_out_of_reach(const geometry::PlanSummary& s, Logger& log) {
+  const auto& regions = s.out_of_reach;
+  if (regions.empty()) {
+    log.info(fmt::format("  out of the tool's reach: nothing (every normal within {:g} deg of "
+                         "+Z, nothing hidden)",
+                         s.reach_angle_deg));
+    return;
+  }
+  double area = 0.0;
+  for (const auto& r : regions) {
+    area += r.area_mm2;
+  }
+  log.warning(fmt::format("  left uncut, out of the tool's reach: {:.1f} mm^2 in {} region(s) "
+                          "(normals more than {:g} deg from +Z, or hidden under the part)",
+                          area, regions.size(), s.reach_angle_deg));
+  constexpr std::size_t shown = 8;
+  for (std::size_t i = 0; i < std::min(shown, regions.size()); ++i) {
+    log.warning(describe(regions[i]));
+  }
+  if (regions.size() > shown) {
+    log.warning(fmt::format("    and {} smaller", regions.size() - shown));
+  }
+}
+
 void report_left_material(const geometry::PlanSummary& s, Logger& log) {
+  report_out_of_reach(s, log);
   const auto places = places_left(s);
   if (places.empty()) {
     log.info(fmt::format("  material left thicker than H ({:g} mm): none{}", s.scallop,

@@ -15,7 +15,12 @@ using job::Logger;
 // Where the ball leaves material thicker than the scallop height H (hollows narrower than
 // the ball, CL points lifted clear of the part): a warning locating each place, thickest
 // first. Otherwise one line saying none, with what stays under H.
+// (First, report_out_of_reach.)
 void report_left_material(const geometry::PlanSummary& summary, Logger& log);
+
+// What the tool cannot get to and so is never cut (too steep for the tilt, hidden under
+// the part): a warning with the area and each region, largest first; else one line.
+void report_out_of_reach(const geometry::PlanSummary& summary, Logger& log);
 
 // Where the plan's time went, stage by stage ("time: meshing 0.41 s, ..."): for --verbose.
 [[nodiscard]] std::string time_summary(const geometry::PlanTimes& times, int solves);

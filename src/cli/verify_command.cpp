@@ -29,7 +29,33 @@ struct VerifyCommandOptions {
   std::string png;
   int level = geometry::min_approx_level;
   SetupFlags setup;
+  double max_tilt = 90.0;
 };
+
+// Where no ball came: the regions and their area, largest first.
+void report_uncut(const std::vector<geometry::UncutRegion>& regions, Logger& log) {
+  if (regions.empty()) {
+    return;
+  }
+  double area = 0.0;
+  for (const auto& r : regions) {
+    area += r.area_mm2;
+  }
+  log.warning(
+      fmt::format("  not cut: {:.1f} mm^2 in {} region(s) no ball reached", area, regions.size()));
+  constexpr std::size_t shown = 8;
+  for (std::size_t i = 0; i < std::min(shown, regions.size()); ++i) {
+    const auto& r = regions[i];
+    const Eigen::Vector3d size = r.high - r.low;
+    log.warning(fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm, over {:.2f} x {:.2f} x {:.2f} "
+                            "mm: {:.1f} mm^2",
+                            r.centroid.x(), r.centroid.y(), r.centroid.z(), size.x(), size.y(),
+                            size.z(), r.area_mm2));
+  }
+  if (regions.size() > shown) {
+    log.warning(fmt::format("    and {} smaller", regions.size() - shown));
+  }
+}
 
 Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const double radius, parse_ball_tool(o.tool));
@@ -43,6 +69,7 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
     options.scallop_target = o.scallop;
   }
   options.sample_spacing = o.spacing;
+  options.max_tilt_deg = o.max_tilt;
   options.name = std::filesystem::path(o.cage).filename().string();
   if (!o.svg.empty()) {
     options.svg = o.svg;
@@ -53,6 +80,12 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   SUBFEED_TRY_ASSIGN(const auto r, geometry::verify_path(surface, o.cl, options));
   log.info(fmt::format("{} on {}: {} samples over {:.2f} mm^2 ({} not reached by the ball)", o.cl,
                        o.cage, r.samples, r.area, r.uncut_samples));
+  if (r.out_of_reach_samples > 0) {
+    log.info(fmt::format("  out of reach: {:.1f} mm^2 whose normals lean more than {:g} deg from "
+                         "+Z ({} samples), not measured for scallop",
+                         r.out_of_reach_area, r.reach_angle_deg, r.out_of_reach_samples));
+  }
+  report_uncut(r.uncut, log);
   log.info(fmt::format(
       "  scallop max {:.6f} mm (near {:.3f}, {:.3f}, {:.3f}), mean {:.6f} mm, 99th "
       "percentile {:.6f} mm",
@@ -106,6 +139,11 @@ void add_verify_command(CLI::App& app, Action& chosen) {
   cmd->add_option("--png", o->png, "Write the same picture as PNG");
   cmd->add_option("--level", o->level, "Bfr approximation level near irregular features")
       ->check(CLI::Range(geometry::min_approx_level, geometry::max_approx_level));
+  cmd->add_option("--max-tilt", o->max_tilt,
+                  "Largest tool tilt from vertical, degrees: steeper surface is out of reach and "
+                  "not measured for scallop (a vertical tool: 90)")
+      ->type_name("DEG")
+      ->check(CLI::Range(0.0, 180.0));
   add_setup_flags(*cmd, o->setup);
   cmd->callback([&chosen, o] { chosen = [o](Logger& log) { return run_verify(*o, log); }; });
 }

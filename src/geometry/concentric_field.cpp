@@ -19,7 +19,7 @@ std::vector<double> slowness_for(const std::vector<double>& need, const PassInte
                                  double reference) {
   std::vector<double> slow(need.size());
   for (std::size_t v = 0; v < need.size(); ++v) {
-    const bool own = intervals.reachable[v] != 0 && need[v] > 0.0;
+    const bool own = intervals.cuts(v) && need[v] > 0.0;
     slow[v] = reference / (own ? need[v] : intervals.cl_spacing[v]);
   }
   return slow;
@@ -90,7 +90,11 @@ Deformation concentric_deformation(const std::vector<Eigen::Vector3d>& c,
                                    const ConcentricSettings& settings) {
   Deformation d;
   d.reference = settings.reference;
-  d.ring_centres = highest_points(path_points, triangles, intervals.reachable);
+  std::vector<char> cut(intervals.reachable.size());
+  for (std::size_t v = 0; v < cut.size(); ++v) {
+    cut[v] = static_cast<char>(intervals.cuts(v));
+  }
+  d.ring_centres = highest_points(path_points, triangles, cut);
   std::vector<double> need = intervals.cl_spacing;
   std::vector<double> arrival;
   const int rounds = need_across ? 1 + settings.rounds : 1;

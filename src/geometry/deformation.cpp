@@ -145,7 +145,7 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   const auto edges = mesh_edges(triangles);
   std::vector<double> eta(c.size());
   for (std::size_t v = 0; v < c.size(); ++v) {
-    eta[v] = intervals.reachable[v] ? d.reference / intervals.plane_interval[v] : 1.0;
+    eta[v] = intervals.cuts(v) ? d.reference / intervals.plane_interval[v] : 1.0;
   }
   const auto fixed = anchors(n, edges, d.xi);
   const double penalty = 1e6;

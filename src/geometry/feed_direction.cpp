@@ -21,7 +21,7 @@ Expected<Deformation> deform_along(const SurfaceMesh& mesh,
                                    const DirectionPricing& p, double direction_deg, int solves,
                                    const SolveProgress& on_solve) {
   const Eigen::Vector3d s = slicing_normal_for(direction_deg);
-  const auto intervals = pass_intervals(mesh, p.ball_radius, p.scallop, s);
+  const auto intervals = pass_intervals(mesh, p.ball_radius, p.scallop, s, p.in_reach);
   const double margin = p.insertion_margin.value_or(std::ranges::max(intervals.cl_spacing));
   const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
     return cl_spacing_across(mesh, p.ball_radius, p.scallop, across, intervals.cl_spacing);

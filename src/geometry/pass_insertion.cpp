@@ -108,7 +108,7 @@ SpacingRatios spacing_ratios(const std::vector<Eigen::Vector3d>& c,
   };
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto [i, j, k] = corners(triangles[t]);
-    if (!intervals.reachable[i] || !intervals.reachable[j] || !intervals.reachable[k] ||
+    if (!intervals.cuts(i) || !intervals.cuts(j) || !intervals.cuts(k) ||
         gradient[t].squaredNorm() == 0.0) {
       continue; // unreachable, or a triangle no level crosses: its neighbours decide
     }

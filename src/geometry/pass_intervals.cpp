@@ -16,8 +16,9 @@ constexpr double flat_radius = 1e9;
 } // namespace
 
 PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h, const Eigen::Vector3d& s,
-                             double min_fraction) {
+                             const std::vector<char>& in_reach, double min_fraction) {
   PassIntervals out;
+  out.in_reach = in_reach;
   const auto n_vertices = static_cast<std::size_t>(mesh.vertex_count());
   out.cl_spacing.resize(n_vertices);
   out.plane_interval.resize(n_vertices);
@@ -43,7 +44,7 @@ PassIntervals pass_intervals(const SurfaceMesh& mesh, double r, double h, const 
     out.cl_spacing[i] = spacing;
     const double interval = std::max(plane_interval(spacing, sn), min_fraction * spacing);
     out.plane_interval[i] = interval;
-    if (out.reachable[i] != 0) {
+    if (out.cuts(i)) {
       out.min_interval = std::min(out.min_interval, interval);
       out.max_interval = std::max(out.max_interval, interval);
     }

@@ -5,6 +5,7 @@
 #include "geometry/scallop_meter.hpp"
 #include "geometry/step_over.hpp"
 #include "geometry/surface_mesh.hpp"
+#include "geometry/uncut_regions.hpp"
 #include "geometry/verify_picture.hpp"
 
 #include <Eigen/Geometry>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
+#include <numbers>
 #include <unordered_map>
 
 namespace subfeed::geometry {
@@ -22,11 +24,13 @@ struct Path {
   std::vector<Capsule> capsules;                       // feed moves: the cut
   std::vector<Capsule> links, rapids;                  // plunges and retracts; rapids
   std::vector<std::vector<Eigen::Vector2d>> passes_xy; // for the picture
+  bool multiaxis = false;                              // the tool axis varies (MULTAX)
 };
 
 Expected<Path> read_path(const std::filesystem::path& file, double r, VerifyReport& report) {
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(file));
   Path path;
+  path.multiaxis = reader.header().multiaxis;
   std::optional<cl::ClPose> last;
   while (true) {
     SUBFEED_TRY_ASSIGN(const auto pose, reader.next());
@@ -221,8 +225,15 @@ struct Measured {
 };
 
 // The grids the samples are measured against, built once.
+// The samples no ball reached, with their shares of the area.
+struct Uncut {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> areas;
+};
+
 struct Sweeps {
   CapsuleGrid cuts, links, rapids;
+  double reach_z; // a normal with less z than this is out of reach
   double r;
 };
 
@@ -249,7 +260,7 @@ std::vector<double> area_shares(const FaceTessellation& tess,
 // ball reached it.
 void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& near_moves,
                     const LimitSample& s, const Sample& where, double share, VerifyReport& report,
-                    std::vector<Measured>& kept) {
+                    std::vector<Measured>& kept, Uncut& uncut) {
   const double r = sweeps.r;
   sweeps.cuts.near(s.point, m.near);
   const auto h = measure_scallop(s.point, s.normal, m.near, r);
@@ -264,8 +275,15 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
       report.gouge_at = s.point;
     }
   }
+  if (s.normal.z() < sweeps.reach_z) {
+    ++report.out_of_reach_samples;
+    report.out_of_reach_area += share;
+    return;
+  }
   if (!std::isfinite(h.height)) {
     ++report.uncut_samples;
+    uncut.points.push_back(s.point);
+    uncut.areas.push_back(share);
     return;
   }
   Sample sample = where;
@@ -278,6 +296,7 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
 std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps& sweeps,
                                       Measurer& m, double spacing, VerifyReport& report) {
   std::vector<Measured> kept;
+  Uncut uncut;
   std::vector<Capsule> near_moves;
   for (int f = 0; f < surface.face_count(); ++f) {
     if (!surface.has_patch(f)) {
@@ -296,10 +315,13 @@ std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps&
     for (std::size_t k = 0; k < tess.uv.size(); ++k) {
       if (evaluated[k]) {
         measure_sample(sweeps, m, near_moves, *evaluated[k],
-                       {f, tess.uv[k].x(), tess.uv[k].y(), 0.0}, share[k], report, kept);
+                       {f, tess.uv[k].x(), tess.uv[k].y(), 0.0}, share[k], report, kept, uncut);
       }
     }
   }
+  // Neighbouring samples lie about `spacing` apart (a face's rate follows its size at its
+  // centre, so a little more where it stretches): three spacings join a region, not two.
+  report.uncut = uncut_regions(uncut.points, uncut.areas, 3.0 * spacing);
   return kept;
 }
 
@@ -380,8 +402,12 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
     return fail(ErrorCode::bad_input, "no cutting moves in the CL data", {cl.string(), 0, {}});
   }
   // Rays look for material up to one radius above the surface.
+  report.reach_angle_deg = path.multiaxis ? options.max_tilt_deg : 90.0;
+  // A normal exactly at the limit (a vertical wall at 90) is in reach: rounding must not
+  // take it out.
+  const double reach_z = std::cos(report.reach_angle_deg * std::numbers::pi / 180.0) - 1e-9;
   const Sweeps sweeps{CapsuleGrid(path.capsules, r, r), CapsuleGrid(path.links, r, r),
-                      CapsuleGrid(path.rapids, r, r), r};
+                      CapsuleGrid(path.rapids, r, r), reach_z, r};
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, sweeps.cuts, r, {}};
   auto kept = measure_surface(surface, sweeps, m, spacing, report);

@@ -10,6 +10,8 @@ std::string_view stage_name(PlanStage stage) {
     return "meshing the limit surface";
   case PlanStage::gate_mesh:
     return "meshing for the motion gate";
+  case PlanStage::reach:
+    return "finding what the tool reaches";
   case PlanStage::directions:
     return "pricing feed directions";
   case PlanStage::deformation:

@@ -45,14 +45,14 @@ double SurfaceMesh::concave_curvature(int i) const {
 }
 
 std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_tolerance,
-                                     int max_rate) {
+                                     int max_rate, double max_edge_mm) {
   std::vector<int> rates(static_cast<std::size_t>(surface.face_count()), 0);
   constexpr int grid = 5;
   for (int f = 0; f < surface.face_count(); ++f) {
     if (!surface.has_patch(f)) {
       continue;
     }
-    double worst = 0.0;
+    double worst = 0.0, stretch = 0.0; // |S''.n| and the longest parameter derivative
     for (const auto& uv : surface.tessellate(f, grid).uv) {
       const auto s = surface.evaluate_regular(f, uv.x(), uv.y());
       if (!s) {
@@ -63,9 +63,13 @@ std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_t
                    vv = s->dvv.dot(s->normal);
       worst = std::max({worst, std::abs(uu), std::abs(vv), std::abs(uu + 2 * mixed + vv),
                         std::abs(uu - 2 * mixed + vv)});
+      stretch = std::max({stretch, s->du.norm(), s->dv.norm()});
     }
     // A chord over parameter step d/rate sags by |S''(d, d).n| / (8 rate^2).
-    const double rate = std::ceil(std::sqrt(worst / (8.0 * chord_tolerance)));
+    double rate = std::ceil(std::sqrt(worst / (8.0 * chord_tolerance)));
+    if (max_edge_mm > 0.0) {
+      rate = std::max(rate, std::ceil(stretch / max_edge_mm));
+    }
     rates[static_cast<std::size_t>(f)] =
         static_cast<int>(std::clamp(rate, 2.0, static_cast<double>(max_rate)));
   }

@@ -5,6 +5,7 @@
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/point_grid.hpp"
+#include "geometry/step_over.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -60,7 +61,11 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
   SUBFEED_TRY_ASSIGN(auto mesh, [&] {
     const auto clock = enter(PlanStage::meshing);
-    return mesh_surface(cage, surface, rates_for_tolerance(surface, chord, options.max_rate));
+    // Cells no longer than a flat step-over: the tool's reach is decided per vertex, and a
+    // pass ends where it does within one step-over even on a flat face.
+    return mesh_surface(cage, surface,
+                        rates_for_tolerance(surface, chord, options.max_rate,
+                                            flat_step(options.ball_radius, options.scallop)));
   }());
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
   const double gate_tolerance =
@@ -76,14 +81,18 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     planner.place_cl_points();
     planner.index_triangles();
   }
+  {
+    const auto clock = enter(PlanStage::reach);
+    planner.find_reach(gate_tolerance);
+  }
   DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
     const auto clock = enter(PlanStage::directions);
     SUBFEED_TRY_ASSIGN(choice, planner.price_directions(observer.solve));
   }
   planner.face(options.choose_direction ? choice.direction_deg : options.direction_deg);
-  const auto intervals =
-      pass_intervals(planner.mesh_, options.ball_radius, options.scallop, planner.s_);
+  const auto intervals = pass_intervals(planner.mesh_, options.ball_radius, options.scallop,
+                                        planner.s_, reached_mask(planner.tool_reach_));
   {
     const auto clock = enter(PlanStage::deformation);
     SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve));
@@ -113,9 +122,13 @@ const std::vector<Eigen::Vector3d>& ToolpathPlanner::path_points() const {
 
 Expected<DirectionChoice> ToolpathPlanner::price_directions(const SolveProgress& progress) {
   const auto& o = options_;
-  const DirectionPricing pricing{
-      o.ball_radius,       o.scallop,           std::min(o.refine_iterations, 4),
-      o.refine_iterations, o.spacing_allowance, o.insertion_margin};
+  const DirectionPricing pricing{.ball_radius = o.ball_radius,
+                                 .scallop = o.scallop,
+                                 .solves = std::min(o.refine_iterations, 4),
+                                 .full_solves = o.refine_iterations,
+                                 .spacing_allowance = o.spacing_allowance,
+                                 .insertion_margin = o.insertion_margin,
+                                 .in_reach = reached_mask(tool_reach_)};
   SUBFEED_TRY_ASSIGN(auto choice,
                      choose_feed_direction(mesh_, cl_points_, path_points(), pricing, progress));
   summary_.direction_prices = choice.prices;
@@ -145,7 +158,7 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
   // scallop unchanged; 0.2 mm cut 1.3 % shorter, a margin below the need itself).
   double narrowest = widest;
   for (std::size_t v = 0; v < intervals.cl_spacing.size(); ++v) {
-    if (intervals.reachable[v] != 0) {
+    if (intervals.cuts(v)) {
       narrowest = std::min(narrowest, intervals.cl_spacing[v]);
     }
   }
@@ -195,7 +208,6 @@ void ToolpathPlanner::summarise(const PassIntervals& intervals) {
   s.mesh_vertices = m.vertex_count();
   s.mesh_triangles = m.triangle_count();
   s.unreachable_vertices = std::ranges::count(intervals.reachable, 0);
-  set_clear_balls();
   s.unreachable_regions =
       unreachable_regions(m, intervals.reachable, material_left(intervals.reachable));
   s.min_interval = intervals.min_interval;
@@ -235,6 +247,67 @@ void ToolpathPlanner::index_triangles() {
   }
 }
 
+void ToolpathPlanner::find_reach(double margin_mm) {
+  const TriangleTree design = design_tree();
+  set_clear_balls(design);
+  std::vector<Eigen::Vector3d> axes(mesh_.points.size(), Eigen::Vector3d::UnitZ());
+  if (!options_.fixed_axis) {
+    const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
+    for (std::size_t v = 0; v < axes.size(); ++v) {
+      axes[v] = vertex_axis(mesh_.points[v], mesh_.normals[v], triangles);
+    }
+  }
+  reach_options_ = {.ball_radius = options_.ball_radius,
+                    .max_tilt_deg = options_.max_tilt_deg,
+                    .fixed_axis = options_.fixed_axis,
+                    .margin = margin_mm,
+                    .clearance_mm = options_.clearance};
+  tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, reach_options_);
+  any_hidden_ = std::ranges::find(tool_reach_, ReachLimit::hidden) != tool_reach_.end();
+  top_z_ = std::ranges::max(mesh_.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
+  for (int t = 0; t < mesh_.triangle_count(); ++t) {
+    if (std::ranges::all_of(mesh_.triangles[static_cast<std::size_t>(t)], [&](int v) {
+          return tool_reach_[static_cast<std::size_t>(v)] == ReachLimit::reached;
+        })) {
+      cut_triangles_.push_back(t);
+    }
+  }
+  summary_.out_of_reach = reach_regions(mesh_, tool_reach_);
+  summary_.reach_angle_deg = reach_angle_deg(reach_options_);
+}
+
+Eigen::Vector3d ToolpathPlanner::vertex_axis(const Eigen::Vector3d& contact,
+                                             const Eigen::Vector3d& normal,
+                                             const PointGrid& triangles) const {
+  const double zeta = options_.axis_radius.value_or(options_.ball_radius);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  triangles.within(contact, zeta,
+                   [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
+  return within_tilt(sum.norm() > 0.0 ? Eigen::Vector3d(sum.normalized()) : normal,
+                     options_.max_tilt_deg);
+}
+
+std::vector<std::array<int, 3>> ToolpathPlanner::triangles_cut() const {
+  std::vector<std::array<int, 3>> out;
+  out.reserve(cut_triangles_.size());
+  for (const int t : cut_triangles_) {
+    out.push_back(mesh_.triangles[static_cast<std::size_t>(t)]);
+  }
+  return out;
+}
+
+std::vector<unsigned char> ToolpathPlanner::depth_cut() const {
+  const auto& depth = deformation_.insertion.depth;
+  std::vector<unsigned char> out;
+  if (!depth.empty()) {
+    out.reserve(cut_triangles_.size());
+    for (const int t : cut_triangles_) {
+      out.push_back(depth[static_cast<std::size_t>(t)]);
+    }
+  }
+  return out;
+}
+
 void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const {
   if (options_.fixed_axis) {
     for (auto& p : pass) {
@@ -242,12 +315,8 @@ void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& tr
     }
     return;
   }
-  const double zeta = options_.axis_radius.value_or(options_.ball_radius);
   for (auto& p : pass) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    triangles.within(p.contact, zeta,
-                     [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
-    p.axis = sum.norm() > 0.0 ? sum.normalized() : p.normal;
+    p.axis = vertex_axis(p.contact, p.normal, triangles);
   }
   // Smoothed along the pass ([1 2 1] twice) so the rotary axes move calmly.
   for (int round = 0; round < 2 && pass.size() > 2; ++round) {
@@ -258,7 +327,7 @@ void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& tr
       next[i] = (pass[i - 1].axis + 2.0 * pass[i].axis + pass[i + 1].axis).normalized();
     }
     for (std::size_t i = 0; i < pass.size(); ++i) {
-      pass[i].axis = next[i];
+      pass[i].axis = within_tilt(next[i], options_.max_tilt_deg);
     }
   }
 }
@@ -349,6 +418,13 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
     }
     if (rise > length) {
       return std::nullopt; // a bump, not a step to the next pass
+    }
+    // Where the part hides some of the surface, a link could pass under it: every pose of
+    // the link must withdraw as the passes' own points do.
+    if (any_hidden_ && i < steps &&
+        !withdraws(design, tip_of(next) + options_.ball_radius * axis_of(next), axis_of(next),
+                   top_z_, reach_options_)) {
+      return std::nullopt;
     }
     if (i < steps) {
       poses.push_back(next);
@@ -495,9 +571,8 @@ double ToolpathPlanner::clearance_lift(const TriangleTree& design, const Eigen::
   return total;
 }
 
-void ToolpathPlanner::set_clear_balls() {
+void ToolpathPlanner::set_clear_balls(const TriangleTree& design) {
   const double r = options_.ball_radius;
-  const TriangleTree design = design_tree();
   clear_balls_.resize(mesh_.points.size());
   for (std::size_t v = 0; v < clear_balls_.size(); ++v) {
     const Eigen::Vector3d& n = mesh_.normals[v];
@@ -580,11 +655,13 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const TriangleTre
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::boundary_passes(const TriangleTree& design) {
-  // Edges of one triangle only, in that triangle's winding, chained end to start.
-  const auto edges = mesh_edges(mesh_.triangles);
+ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangles,
+                                 const TriangleTree& design) {
+  // Edges of one triangle only, in that triangle's winding, chained end to start: where the
+  // surface ends and where the tool's reach does.
+  const auto edges = mesh_edges(triangles);
   std::unordered_map<int, int> next;
-  for (const auto& t : mesh_.triangles) {
+  for (const auto& t : triangles) {
     for (std::size_t k = 0; k < 3; ++k) {
       if (triangles_on_edge(edges, t[k], t[(k + 1) % 3]) == 1) {
         next[t[k]] = t[(k + 1) % 3];
@@ -618,9 +695,35 @@ ToolpathPlanner::boundary_passes(const TriangleTree& design) {
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth,
-                           const TriangleTree& design) {
-  const auto& inserted = deformation_.insertion.depth;
+ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& design) const {
+  std::vector<std::vector<PassPoint>> pieces;
+  if (!any_hidden_) {
+    pieces.push_back(std::move(pass));
+    return pieces;
+  }
+  // Between two vertices in reach an edge can still pass under the part (round the corner
+  // of a shadow): each point must withdraw, since any may end a piece and start a link.
+  std::vector<PassPoint> piece;
+  const auto close = [&] {
+    if (piece.size() >= 2) {
+      pieces.push_back(std::move(piece));
+    }
+    piece.clear();
+  };
+  for (auto& p : pass) {
+    if (withdraws(design, p.centre, p.axis, top_z_, reach_options_)) {
+      piece.push_back(std::move(p));
+    } else {
+      close();
+    }
+  }
+  close();
+  return pieces;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted,
+                           double level, int depth, const TriangleTree& design) {
   auto lines = slicer.slice(level, inserted.empty() ? nullptr : &inserted, depth);
   std::vector<std::vector<PassPoint>> passes;
   for (const auto& line : lines) {
@@ -652,7 +755,10 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, double level, int depth,
 
 Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
   const StageClock clock(summary_.times[PlanStage::slicing]);
-  MeshSlicer slicer(mesh_.triangles, deformation_.deformed);
+  // Only the triangles in reach: a pass ends where the tool's reach does.
+  const auto cut = triangles_cut();
+  const auto inserted_depth = depth_cut();
+  MeshSlicer slicer(cut, deformation_.deformed);
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;
   const long per_plane = 1L << max_insertion_depth;
@@ -673,7 +779,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
       progress(index / per_plane, planes);
     }
     const double level = first + static_cast<double>(index) * step / static_cast<double>(per_plane);
-    auto passes = cut_level(slicer, level, depth, design);
+    auto passes = cut_level(slicer, inserted_depth, level, depth, design);
     if (passes.empty()) {
       continue;
     }
@@ -685,21 +791,25 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
       }
     }
     ++cut_levels;
-    for (auto& pass : passes) {
-      set_axes(pass, triangles);
-      if (rings && depth > 0) {
-        inserted.push_back(std::move(pass));
-      } else {
-        SUBFEED_TRY(emit_pass(pass, sink, design));
+    for (auto& whole : passes) {
+      set_axes(whole, triangles);
+      for (auto& pass : within_reach(std::move(whole), design)) {
+        if (rings && depth > 0) {
+          inserted.push_back(std::move(pass));
+        } else {
+          SUBFEED_TRY(emit_pass(pass, sink, design));
+        }
       }
     }
   }
   SUBFEED_TRY(emit_nearest_first(std::move(inserted), sink, design));
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
-  for (auto& pass : boundary_passes(design)) {
-    set_axes(pass, triangles);
-    SUBFEED_TRY(emit_pass(pass, sink, design));
+  for (auto& whole : boundary_passes(cut, design)) {
+    set_axes(whole, triangles);
+    for (const auto& pass : within_reach(std::move(whole), design)) {
+      SUBFEED_TRY(emit_pass(pass, sink, design));
+    }
   }
   if (last_) {
     const Eigen::Vector3d above = tip_of(*last_) + options_.clearance * axis_of(*last_);

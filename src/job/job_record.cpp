@@ -79,6 +79,21 @@ std::filesystem::path journal_path(const JobRecord& o) {
 
 namespace {
 
+// The tilt the plan may use: what was said, checked against the machine, or the machine's.
+Expected<double> machine_tilt(const post::MachineConfig& machine, double said_deg) {
+  const auto range = post::tilt_range_deg(machine);
+  if (!range) {
+    return said_deg >= 0.0 ? said_deg : 90.0; // three axes: the tool stays vertical anyway
+  }
+  if (said_deg > *range + 1e-9) {
+    return fail(ErrorCode::usage,
+                fmt::format("{:g} degrees is more than {} tilts the tool ({:g} degrees)", said_deg,
+                            machine.source, *range),
+                {{}, 0, "--max-tilt"});
+  }
+  return said_deg >= 0.0 ? said_deg : *range;
+}
+
 post::PostFileOptions post_options_for(const post::MachineConfig& machine, const JobRecord& o) {
   post::PostFileOptions post;
   post.program = post::program_options_for(machine);
@@ -171,6 +186,7 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
     plan.fixed_axis = true; // a three-axis machine holds the tool vertical
     log.detail("three-axis machine: the tool axis stays vertical");
   }
+  SUBFEED_TRY_ASSIGN(plan.max_tilt_deg, machine_tilt(machine, o.plan.max_tilt));
   const auto setup = o.setup.with_defaults();
   SUBFEED_TRY_ASSIGN(auto cage, geometry::read_part(o.cage, setup));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, o.plan.level));
@@ -193,14 +209,14 @@ std::string encode_job(const JobRecord& o) {
   return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
                      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
                      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
-                     "gate_tolerance={}{}",
+                     "gate_tolerance={} max_tilt={}{}",
                      escape(o.cage), escape(o.machine),
                      escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
                      number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
                      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
                      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
                      p.refine, number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage),
-                     number(p.gate_tolerance), setup_fields(o.setup));
+                     number(p.gate_tolerance), number(p.max_tilt), setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
@@ -259,6 +275,9 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
   o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
   if (fields.contains("gate_tolerance")) {
     o.plan.gate_tolerance = real("gate_tolerance");
+  }
+  if (fields.contains("max_tilt")) {
+    o.plan.max_tilt = real("max_tilt");
   }
   SUBFEED_TRY_ASSIGN(o.setup, setup_flags_of(fields, where));
   if (const auto it = fields.find("check_cage"); it != fields.end()) {

@@ -45,6 +45,7 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& o) {
     options.axis_radius = o.axis_radius;
   }
   options.fixed_axis = o.axis == "fixed";
+  options.max_tilt_deg = o.max_tilt >= 0.0 ? o.max_tilt : 90.0;
   options.zigzag = !o.one_way;
   options.feed = o.feed;
   options.plunge_feed = o.plunge_feed;

@@ -1,5 +1,6 @@
 #include "job/job_pipeline.hpp"
 #include "job/job_record.hpp"
+#include "job/plan_settings.hpp"
 #include "job/restart_point.hpp"
 
 #include "post/post_file.hpp"
@@ -202,4 +203,29 @@ TEST_CASE("job pipeline: CL data the gate refuses stops before the refused pose 
   for (const auto& line : streamed) {
     CHECK(line.find("Z-1.") == std::string::npos); // the refused rapid's target never streamed
   }
+}
+
+TEST_CASE("job spec: the tilt is the machine's unless said, and never more than it turns",
+          "[unit]") {
+  TempDir dir;
+  auto o = plane_job(dir);
+  o.plan.axis = "normal";
+  o.machine = source_dir + "/configs/grblhal-xyzac-trt.toml"; // A -100..50, C endless
+  CHECK(spec_of(o).plan->options.max_tilt_deg == 100.0);
+  o.plan.max_tilt = 45.0;
+  CHECK(spec_of(o).plan->options.max_tilt_deg == 45.0);
+  o.plan.max_tilt = 120.0;
+  std::ostringstream out, err;
+  Logger log(Verbosity::quiet, out, err);
+  const auto refused = job_spec(o, log);
+  REQUIRE_FALSE(refused);
+  CHECK(refused.error().where.key == "--max-tilt");
+  CHECK(refused.error().message ==
+        "120 degrees is more than " + o.machine + " tilts the tool (100 degrees)");
+  // A three-axis machine: the tool stays vertical, and a plan without a machine leans 90.
+  o.machine = source_dir + "/configs/grbl-router-3axis.toml";
+  o.plan.max_tilt = -1.0;
+  CHECK(spec_of(o).plan->options.fixed_axis);
+  geometry::PlanOptions alone = *plan_options_from(o.plan);
+  CHECK(alone.max_tilt_deg == 90.0);
 }

@@ -102,3 +102,20 @@ TEST_CASE("a said setup meets a recorded one field by field") {
           "a.cl: setup 'up=y scale=ten origin=model': setup scale 'ten' is not a number above 0");
   }
 }
+
+TEST_CASE("a job record keeps the tilt said, and reads an older record as not said") {
+  for (const double tilt : {-1.0, 0.0, 37.5, 90.0, 180.0}) {
+    auto job = job_with({});
+    job.plan.max_tilt = tilt;
+    const auto back = decode_job(encode_job(job), {"j.journal", 0, "job"});
+    REQUIRE(back);
+    CHECK(back->plan.max_tilt == tilt);
+  }
+  auto text = encode_job(job_with({}));
+  const auto at = text.find(" max_tilt=");
+  REQUIRE(at != std::string::npos);
+  text.erase(at, text.find(' ', at + 1) - at);
+  const auto older = decode_job(text, {"j.journal", 0, "job"});
+  REQUIRE(older);
+  CHECK(older->plan.max_tilt == -1.0);
+}

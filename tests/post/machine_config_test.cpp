@@ -229,3 +229,29 @@ TEST_CASE("the [post] table: defaults, values and errors") {
   expect_error(replace(with_post, "\"negative\"", "\"down\""),
                "m.toml:35: post.preferred_tilt: 'down' is not one of positive, negative, either");
 }
+
+TEST_CASE("a machine's tilt range is its tilt axis's reach in every direction round C", "[unit]") {
+  const std::string dir = std::string(SUBFEED_SOURCE_DIR) + "/configs/";
+  const auto range = [&](const std::string& name) {
+    const auto config = subfeed::post::load_machine_config(dir + name);
+    REQUIRE(config);
+    return subfeed::post::tilt_range_deg(*config);
+  };
+  CHECK_FALSE(range("grbl-router-3axis.toml"));
+  CHECK(range("grblhal-xyzac-trt.toml") == 100.0);  // A -100..50, C endless
+  CHECK(range("fanuc-xyzac-trt.toml") == 120.0);    // A -120..30, C endless
+  CHECK(range("grblhal-xyzac-head.toml") == 95.0);  // A -95..95, C a turn each way
+  CHECK(range("linuxcnc-xyzbc-trt.toml") == 110.0); // B -110..110, C endless
+  // C less than a turn: a direction may need the other sign of A, so the smaller side.
+  const auto half_turn =
+      replace(trt, "[axes.c]\ncyclic = true", "[axes.c]\nmin = -90.0\nmax = 90.0");
+  const auto limited = parse_machine_config(half_turn, "m.toml");
+  REQUIRE(limited);
+  REQUIRE_FALSE(limited->axes[5]->cyclic);
+  CHECK(subfeed::post::tilt_range_deg(*limited) == 50.0); // A -100..50
+  // And a tilt one way only can reach no direction C does not turn it to.
+  const auto one_way = parse_machine_config(
+      replace(half_turn, "[axes.a]\nmin = -100.0", "[axes.a]\nmin = 0.0"), "m.toml");
+  REQUIRE(one_way);
+  CHECK(subfeed::post::tilt_range_deg(*one_way) == 0.0);
+}

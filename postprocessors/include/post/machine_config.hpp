@@ -112,4 +112,9 @@ struct MachineConfig {
 [[nodiscard]] Expected<MachineConfig> parse_machine_config(std::string_view text,
                                                            const std::string& source);
 
+// The most the machine leans the tool from its spindle's Z, degrees, in every direction
+// round it: the tilt axis's larger travel when C turns a whole circle, else its smaller
+// one (either sign with half a turn of C). Nothing for a three-axis machine.
+[[nodiscard]] std::optional<double> tilt_range_deg(const MachineConfig& machine);
+
 } // namespace subfeed::post

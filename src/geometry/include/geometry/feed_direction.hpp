@@ -44,6 +44,7 @@ struct DirectionPricing {
   double spacing_allowance = 0.01;
   std::optional<double> insertion_margin; // mm; default the widest CL spacing
   double axis_preference = 0.02;          // fraction of the length
+  std::vector<char> in_reach;             // PassIntervals::in_reach
 };
 
 // The slicing normal of a feed direction: horizontal, across the feed.

@@ -15,15 +15,25 @@ struct PassIntervals {
   std::vector<double> cl_spacing;     // mm between neighbouring ball centres across passes
   std::vector<double> plane_interval; // mm between slicing planes
   std::vector<char> reachable;        // 0 where a concave radius below the ball's forbids it
-  double min_interval = 0.0;
+  // 0 where the tool cannot get to the vertex at all (tool_reach.hpp): never cut, so its
+  // need sets nothing. Empty: every vertex.
+  std::vector<char> in_reach;
+  double min_interval = 0.0; // over the vertices cut
   double max_interval = 0.0;
+
+  // Whether passes are planned over vertex v: the ball fits and the tool gets there.
+  [[nodiscard]] bool cuts(std::size_t v) const {
+    return reachable[v] != 0 && (in_reach.empty() || in_reach[v] != 0);
+  }
 };
 
 // `slicing_normal` is the unit normal s of the planes. Where the surface faces along s (a
 // wall the planes meet edge-on) the interval is kept at least `min_fraction` of the CL
 // spacing so the pass count stays finite.
+// `in_reach`, when not empty, is kept in the result (PassIntervals::in_reach).
 [[nodiscard]] PassIntervals pass_intervals(const SurfaceMesh& mesh, double ball_radius,
                                            double scallop, const Eigen::Vector3d& slicing_normal,
+                                           const std::vector<char>& in_reach = {},
                                            double min_fraction = 0.05);
 
 // The CL spacing each vertex needs across passes whose spacing runs along `across` (a

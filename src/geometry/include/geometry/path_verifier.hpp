@@ -14,6 +14,7 @@
 #include "base/error.hpp"
 #include "cl/cl_reader.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/uncut_regions.hpp"
 
 #include <Eigen/Core>
 
@@ -30,6 +31,10 @@ struct VerifyOptions {
   std::optional<std::filesystem::path> svg; // top view over a scallop heat map
   std::optional<std::filesystem::path> png; // the same picture as PNG
   std::string name;                         // the part, for the picture's title
+  // The tool axis's largest angle from +Z, degrees: samples whose normal leans further are
+  // out of reach and are not measured for scallop (gouges and touches still are). A path
+  // with a vertical tool (no MULTAX) reaches 90 degrees whatever this says.
+  double max_tilt_deg = 90.0;
 };
 
 // Samples of the surface inside the ball's sweep over moves that must not cut.
@@ -41,7 +46,11 @@ struct MoveTouches {
 
 struct VerifyReport {
   long samples = 0;
-  long uncut_samples = 0; // not reached by any ball within one radius above the surface
+  long uncut_samples = 0;         // not reached by any ball within one radius above the surface
+  std::vector<UncutRegion> uncut; // where they lie, largest area first
+  long out_of_reach_samples = 0;  // normals beyond the tilt: not measured for scallop
+  double out_of_reach_area = 0.0; // mm^2
+  double reach_angle_deg = 0.0;   // the normal's angle from +Z beyond which they are
   double max_scallop = 0.0, mean_scallop = 0.0, p99_scallop = 0.0; // mm
   Eigen::Vector3d max_at = Eigen::Vector3d::Zero();                // where the worst scallop is, mm
   long gouges = 0;                                                 // of the cutting (feed) moves

@@ -15,12 +15,13 @@ namespace subfeed::geometry {
 enum class PlanStage {
   meshing,     // the limit surface meshed within the chordal tolerance
   gate_mesh,   // the motion gate's own, finer mesh
+  reach,       // balls lifted clear, and what the tool cannot get to (tool_reach.hpp)
   directions,  // pricing the feed directions (--direction auto)
   deformation, // the deformation solves
-  clearing,    // lifting balls clear of the part, finding what they leave
+  clearing,    // what the balls leave in hollows narrower than them
   slicing,     // cutting the planes, linking the passes (with the gate checks and the sink)
 };
-inline constexpr std::size_t plan_stage_count = 6;
+inline constexpr std::size_t plan_stage_count = 7;
 
 [[nodiscard]] std::string_view stage_name(PlanStage stage);
 

@@ -38,10 +38,13 @@ struct SurfaceMesh {
 [[nodiscard]] Eigen::Matrix3d curvature_matrix(const LimitSample& sample);
 
 // Per cage face, the tessellation rate that keeps every chord within `chord_tolerance` (mm)
-// of the surface, estimated from second derivatives sampled over the face; clamped to
-// 2..max_rate (0 for a face without a patch).
+// of the surface, estimated from second derivatives sampled over the face, and, with
+// `max_edge_mm`, every cell edge about that short or shorter (flat faces too, so that
+// whatever is decided per vertex, such as the tool's reach, is decided that finely);
+// clamped to 2..max_rate (0 for a face without a patch).
 [[nodiscard]] std::vector<int> rates_for_tolerance(const LimitSurface& surface,
-                                                   double chord_tolerance, int max_rate = 128);
+                                                   double chord_tolerance, int max_rate = 128,
+                                                   double max_edge_mm = 0.0);
 
 // A face is cut at its own rate inside; a cage edge at the larger rate of its two faces, so
 // neighbours share every point along it.

@@ -39,6 +39,7 @@
 #include "geometry/pass_intervals.hpp"
 #include "geometry/plan_stages.hpp"
 #include "geometry/point_grid.hpp"
+#include "geometry/reach_regions.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/triangle_tree.hpp"
 #include "geometry/unreachable_regions.hpp"
@@ -64,6 +65,9 @@ struct PlanOptions {
   bool baseline = false;
   std::optional<double> axis_radius; // zeta, mm; default: the ball radius
   bool fixed_axis = false;           // vertical tool (three axes)
+  // The tool axis's largest angle from +Z, degrees: surface beyond it (or hidden under
+  // other parts of the surface) is left uncut (tool_reach.hpp), and no axis leans further.
+  double max_tilt_deg = 90.0;
   bool zigzag = true;
   std::optional<double> tolerance; // mm along a pass; default min(h/10, 0.4 um)
   double feed = 1000.0;            // mm/min
@@ -102,7 +106,11 @@ struct PlanSummary {
   long mesh_triangles = 0;
   long unreachable_vertices = 0;
   std::vector<UnreachableRegion> unreachable_regions; // where they are, largest first
-  double min_interval = 0.0;                          // mm between planes, over the surface
+  // Left uncut because the tool cannot get there (tilt or hidden), largest first; and the
+  // normal's angle from +Z beyond which a point is out of reach.
+  std::vector<ReachRegion> out_of_reach;
+  double reach_angle_deg = 0.0;
+  double min_interval = 0.0; // mm between planes, over the surface
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space
   int solves = 0;
@@ -152,6 +160,8 @@ private:
   // The steps of prepare(), in order.
   void place_cl_points(); // the ball centres over the mesh's vertices
   void index_triangles();
+  // The clear balls, then which vertices the tool reaches and which triangles are cut.
+  void find_reach(double margin_mm);
   // Prices the feed directions (--direction auto); the cheapest, maybe solved in full.
   [[nodiscard]] Expected<DirectionChoice> price_directions(const SolveProgress& progress);
   void face(double direction_deg); // the feed direction and the slicing normal
@@ -163,9 +173,17 @@ private:
   void set_link_limits(double widest_spacing);
   // Where the tool tip runs: the design surface, or the ball centres for a fixed axis.
   [[nodiscard]] const std::vector<Eigen::Vector3d>& path_points() const;
-  [[nodiscard]] std::vector<std::vector<PassPoint>> boundary_passes(const TriangleTree& design);
+  // The triangles in reach (cut_triangles_), and the insertion depth of each.
+  [[nodiscard]] std::vector<std::array<int, 3>> triangles_cut() const;
+  [[nodiscard]] std::vector<unsigned char> depth_cut() const;
   [[nodiscard]] std::vector<std::vector<PassPoint>>
-  cut_level(MeshSlicer& slicer, double level, int depth, const TriangleTree& design);
+  boundary_passes(const std::vector<std::array<int, 3>>& triangles, const TriangleTree& design);
+  // The pieces of `pass` whose every point the ball can be withdrawn from (tool_reach.hpp).
+  [[nodiscard]] std::vector<std::vector<PassPoint>> within_reach(std::vector<PassPoint> pass,
+                                                                 const TriangleTree& design) const;
+  [[nodiscard]] std::vector<std::vector<PassPoint>>
+  cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level, int depth,
+            const TriangleTree& design);
   // The design mesh's triangle tree, for for_near_triangles.
   [[nodiscard]] TriangleTree design_tree() const;
   // Calls visit(centre - nearest point) once for each design triangle whose bounding sphere
@@ -180,7 +198,7 @@ private:
   void clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design);
   // A ball set on each design vertex along its normal and lifted clear of the part: the
   // places a ball can be, against which what a hollow keeps is measured.
-  void set_clear_balls();
+  void set_clear_balls(const TriangleTree& design);
   // The gap between p and the nearest ball centred on `centres` (gridded in `balls`), or
   // `bound` where none is nearer, mm.
   [[nodiscard]] double gap_to_ball(const std::vector<Eigen::Vector3d>& centres,
@@ -189,6 +207,11 @@ private:
   // For each vertex the ball cannot reach, how much material it leaves there: its gap to
   // the nearest clear ball (0 where reachable), mm.
   [[nodiscard]] std::vector<double> material_left(const std::vector<char>& reachable) const;
+  // The tool axis at a contact: the area-weighted normals of the triangles within zeta
+  // (`triangles`: their centroids), leaning at most max_tilt_deg.
+  [[nodiscard]] Eigen::Vector3d vertex_axis(const Eigen::Vector3d& contact,
+                                            const Eigen::Vector3d& normal,
+                                            const PointGrid& triangles) const;
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
@@ -213,7 +236,12 @@ private:
   double longest_edge_ = 0.0; // of the design mesh, mm
   std::vector<LiftedPoint> lifted_;
   std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm
-  std::vector<Eigen::Vector3d> path_balls_;  // the ball centres of every cleared pass, mm
+  std::vector<ReachLimit> tool_reach_;       // per design vertex
+  std::vector<int> cut_triangles_;           // indices of the triangles in reach
+  ReachOptions reach_options_;
+  bool any_hidden_ = false;                 // some vertex the withdrawing ball cannot leave
+  double top_z_ = 0.0;                      // the design mesh's highest point, mm
+  std::vector<Eigen::Vector3d> path_balls_; // the ball centres of every cleared pass, mm
   Deformation deformation_;
   double chord_tolerance_ = 0.0;
   double safe_z_ = 0.0;

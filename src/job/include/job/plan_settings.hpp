@@ -27,6 +27,9 @@ struct PlanSettings {
   double gate_tolerance = 0.0;
   int level = geometry::min_approx_level;
   int refine = 60;
+  // The tool axis's largest angle from +Z, degrees; < 0: the machine's tilt range when a
+  // machine is known (run), else 90.
+  double max_tilt = -1.0;
 };
 
 // Checks what option parsing cannot (the scallop against the tool, the direction) and fills
