@@ -9,15 +9,12 @@
 #include "bench_harness.hpp"
 #include "body_cage.hpp"
 
+#include "geometry/cage_refinement.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
 #include "geometry/part_setup.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/toolpath_planner.hpp"
-
-#include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <chrono>
 #include <cmath>
@@ -32,74 +29,6 @@
 namespace {
 
 using namespace subfeed;
-namespace osd = OpenSubdiv;
-
-struct Point {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  void Clear() { p.setZero(); }
-  void AddWithWeight(const Point& other, float weight) { p += weight * other.p; }
-};
-
-// The cage after `levels` uniform Catmull-Clark steps: four times the faces each step, the
-// same limit surface (creases carried with their sharpness, as OpenSubdiv refines them).
-geometry::Cage subdivided(const geometry::Cage& cage, int levels) {
-  if (levels == 0) {
-    return cage;
-  }
-  std::vector<int> pairs;
-  std::vector<float> weights;
-  for (const auto& c : cage.creases) {
-    pairs.insert(pairs.end(), {c.v0, c.v1});
-    weights.push_back(static_cast<float>(c.sharpness));
-  }
-  osd::Far::TopologyDescriptor desc;
-  desc.numVertices = cage.vertex_count();
-  desc.numFaces = cage.face_count();
-  desc.numVertsPerFace = cage.face_sizes.data();
-  desc.vertIndicesPerFace = cage.face_indices.data();
-  desc.numCreases = static_cast<int>(weights.size());
-  desc.creaseVertexIndexPairs = pairs.data();
-  desc.creaseWeights = weights.data();
-  osd::Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-  std::unique_ptr<osd::Far::TopologyRefiner> refiner(
-      Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
-  osd::Far::TopologyRefiner::UniformOptions uniform(levels);
-  uniform.fullTopologyInLastLevel = true; // its edges, for the creases
-  refiner->RefineUniform(uniform);
-  std::vector<Point> points(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-  for (int v = 0; v < cage.vertex_count(); ++v) {
-    points[static_cast<std::size_t>(v)].p = cage.positions[static_cast<std::size_t>(v)];
-  }
-  const osd::Far::PrimvarRefiner primvar(*refiner);
-  Point* source = points.data();
-  for (int level = 1; level <= levels; ++level) {
-    Point* destination = source + refiner->GetLevel(level - 1).GetNumVertices();
-    primvar.Interpolate(level, source, destination);
-    source = destination;
-  }
-  const auto& last = refiner->GetLevel(levels);
-  geometry::Cage out;
-  out.source = cage.source;
-  for (int v = 0; v < last.GetNumVertices(); ++v) {
-    out.positions.push_back(source[v].p);
-  }
-  for (int f = 0; f < last.GetNumFaces(); ++f) {
-    const auto loop = last.GetFaceVertices(f);
-    out.face_offsets.push_back(static_cast<int>(out.face_indices.size()));
-    out.face_sizes.push_back(loop.size());
-    out.face_lines.push_back(0);
-    out.face_indices.insert(out.face_indices.end(), loop.begin(), loop.end());
-  }
-  for (int e = 0; e < last.GetNumEdges(); ++e) {
-    if (const float s = last.GetEdgeSharpness(e); s > 0.0f) {
-      const auto ends = last.GetEdgeVertices(e);
-      out.creases.push_back({ends[0], ends[1], s, 0});
-    }
-  }
-  return out;
-}
 
 struct Measured {
   bool finished = false;
@@ -145,6 +74,19 @@ bool plan(const geometry::Cage& cage, double scallop) {
     return {};
   });
   bench::keep(points);
+  // Where the time went, stage by stage, for the figures below.
+  const auto& times = planner->summary().times;
+  std::string stages;
+  for (std::size_t i = 0; i < geometry::plan_stage_count; ++i) {
+    const auto stage = static_cast<geometry::PlanStage>(i);
+    stages +=
+        fmt::format("{}{} {:.1f} s", i == 0 ? "" : ", ", geometry::stage_name(stage), times[stage]);
+  }
+  std::printf("    (%ld vertices, the cage subdivided %d more time(s) by the planner; %s; %d "
+              "solves)\n",
+              planner->summary().mesh_vertices, planner->summary().cage_levels, stages.c_str(),
+              planner->summary().solves);
+  std::fflush(stdout); // the child leaves by _exit, which flushes nothing
   return ran.has_value();
 }
 
@@ -156,6 +98,11 @@ bool mesh_only(const geometry::Cage& cage, double scallop) {
   const double chord = std::min(scallop / 10.0, 4e-4); // the planner's default tolerance
   auto mesh =
       geometry::mesh_surface(cage, *surface, geometry::rates_for_tolerance(*surface, chord, 96));
+  if (mesh) {
+    std::printf("    (mesh alone: %d vertices, %d faces)\n", mesh->vertex_count(),
+                cage.face_count());
+    std::fflush(stdout);
+  }
   bench::keep(mesh);
   return mesh.has_value();
 }
@@ -184,7 +131,7 @@ int main() {
 
   std::vector<Measured> by_faces;
   for (const int levels : {0, 1, 2}) {
-    const auto refined = subdivided(cage, levels);
+    const auto refined = geometry::refine_cage(cage, levels).value();
     const auto m = in_child(limit_s, [&] { return plan(refined, 0.01); });
     const auto floor = in_child(limit_s, [&] { return mesh_only(refined, 0.01); });
     const auto name =

@@ -68,10 +68,15 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          "(in the cutting length), the rest retract",
                          s.stay_down_links, s.passes - 1, s.stay_down_length));
   }
-  log.info(fmt::format("  mesh {} vertices, {} triangles (up to {} segments a cage edge); plane "
+  const std::string refined =
+      s.cage_levels > 0
+          ? fmt::format(" of the cage subdivided {} time(s), {} faces", s.cage_levels, s.cage_faces)
+          : std::string();
+  log.info(fmt::format("  mesh {} vertices, {} triangles (up to {} segments a cage edge{}); plane "
                        "interval {:.4f}..{:.4f} mm; {} planes {:.4f} mm apart{}",
-                       s.mesh_vertices, s.mesh_triangles, s.rate, s.min_interval, s.max_interval,
-                       s.planes, s.reference, o.plan.baseline ? "" : " in deformed space"));
+                       s.mesh_vertices, s.mesh_triangles, s.rate, refined, s.min_interval,
+                       s.max_interval, s.planes, s.reference,
+                       o.plan.baseline ? "" : " in deformed space"));
   const std::string inserted =
       s.inserted_depth > 0 ? fmt::format("; passes inserted there down to 1/{} of a plane step",
                                          1 << s.inserted_depth)

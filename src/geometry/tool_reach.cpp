@@ -1,5 +1,7 @@
 #include "geometry/tool_reach.hpp"
 
+#include "geometry/split_work.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -47,16 +49,15 @@ std::vector<ReachLimit> surface_reach(const SurfaceMesh& mesh,
     top = std::max(top, p.z());
   }
   std::vector<ReachLimit> reach(mesh.points.size(), ReachLimit::reached);
-  for (std::size_t v = 0; v < reach.size(); ++v) {
-    const Eigen::Vector3d& n = mesh.normals[v];
-    if (tilt_deg(n) > limit_deg) {
-      reach[v] = ReachLimit::tilt;
-      continue;
+  split_work(reach.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      if (tilt_deg(mesh.normals[v]) > limit_deg) {
+        reach[v] = ReachLimit::tilt;
+      } else if (!withdraws(design, clear_balls[v], axes[v], top, options)) {
+        reach[v] = ReachLimit::hidden;
+      }
     }
-    if (!withdraws(design, clear_balls[v], axes[v], top, options)) {
-      reach[v] = ReachLimit::hidden;
-    }
-  }
+  });
   return reach;
 }
 

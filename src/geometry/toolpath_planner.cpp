@@ -5,6 +5,7 @@
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/point_grid.hpp"
+#include "geometry/split_work.hpp"
 #include "geometry/step_over.hpp"
 
 #include <Eigen/Geometry>
@@ -59,12 +60,17 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     return StageClock(times[stage]);
   };
   const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
-  SUBFEED_TRY_ASSIGN(auto mesh, [&] {
+  std::optional<PlanningCage> finer;
+  SUBFEED_TRY_ASSIGN(auto mesh, [&]() -> Expected<SurfaceMesh> {
     const auto clock = enter(PlanStage::meshing);
+    if (options.max_cage_levels > 0) {
+      SUBFEED_TRY_ASSIGN(finer, planning_cage(cage, surface, chord, options.max_cage_levels));
+    }
     // Cells no longer than a flat step-over: the tool's reach is decided per vertex, and a
     // pass ends where it does within one step-over even on a flat face.
-    return mesh_surface(cage, surface,
-                        rates_for_tolerance(surface, chord, options.max_rate,
+    const auto& s = finer ? finer->surface : surface;
+    return mesh_surface(finer ? finer->cage : cage, s,
+                        rates_for_tolerance(s, chord, options.max_rate,
                                             flat_step(options.ball_radius, options.scallop)));
   }());
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
@@ -72,9 +78,13 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
   SUBFEED_TRY_ASSIGN(auto gate, [&] {
     const auto clock = enter(PlanStage::gate_mesh);
-    return MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance});
+    return finer ? MotionGate::build(finer->cage, finer->surface,
+                                     {options.ball_radius, gate_tolerance})
+                 : MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance});
   }());
   ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
+  planner.summary_.cage_levels = finer ? finer->levels : 0;
+  planner.summary_.cage_faces = finer ? finer->cage.face_count() : cage.face_count();
   planner.chord_tolerance_ = chord;
   {
     const StageClock clock(times[PlanStage::meshing]); // the ball centres over the mesh
@@ -253,9 +263,11 @@ void ToolpathPlanner::find_reach(double margin_mm) {
   std::vector<Eigen::Vector3d> axes(mesh_.points.size(), Eigen::Vector3d::UnitZ());
   if (!options_.fixed_axis) {
     const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
-    for (std::size_t v = 0; v < axes.size(); ++v) {
-      axes[v] = vertex_axis(mesh_.points[v], mesh_.normals[v], triangles);
-    }
+    split_work(axes.size(), [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        axes[v] = vertex_axis(mesh_.points[v], mesh_.normals[v], triangles);
+      }
+    });
   }
   reach_options_ = {.ball_radius = options_.ball_radius,
                     .max_tilt_deg = options_.max_tilt_deg,
@@ -574,11 +586,13 @@ double ToolpathPlanner::clearance_lift(const TriangleTree& design, const Eigen::
 void ToolpathPlanner::set_clear_balls(const TriangleTree& design) {
   const double r = options_.ball_radius;
   clear_balls_.resize(mesh_.points.size());
-  for (std::size_t v = 0; v < clear_balls_.size(); ++v) {
-    const Eigen::Vector3d& n = mesh_.normals[v];
-    clear_balls_[v] = mesh_.points[v] + r * n;
-    clear_balls_[v] += clearance_lift(design, clear_balls_[v], n) * n;
-  }
+  split_work(clear_balls_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const Eigen::Vector3d& n = mesh_.normals[v];
+      clear_balls_[v] = mesh_.points[v] + r * n;
+      clear_balls_[v] += clearance_lift(design, clear_balls_[v], n) * n;
+    }
+  });
 }
 
 double ToolpathPlanner::gap_to_ball(const std::vector<Eigen::Vector3d>& centres,

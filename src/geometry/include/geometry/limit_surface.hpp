@@ -47,6 +47,7 @@ public:
   [[nodiscard]] bool has_patch(int face) const;
   // Vertex count of the cage face, which decides Bfr's parameter domain for it.
   [[nodiscard]] int face_size(int face) const;
+  [[nodiscard]] int approx_level() const; // as built
 
   // (u, v) must lie in the face's domain; a degenerate tangent plane (du and dv within
   // 1e-6 rad of parallel, where their cross product is rounding) is an error.

@@ -38,6 +38,7 @@
 #include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
 #include "geometry/plan_stages.hpp"
+#include "geometry/planning_cage.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/reach_regions.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -87,6 +88,9 @@ struct PlanOptions {
   // (pass_insertion.hpp); the scallop there may exceed the target by about twice as much.
   double spacing_allowance = 0.01;
   int max_rate = 96; // tessellation segments per cage face edge
+  // Uniform subdivision steps the planner may take on the cage before meshing, where they
+  // mesh the same surface with fewer vertices (planning_cage.hpp); 0: the cage as given.
+  int max_cage_levels = 3;
   // mm a move may cut below the surface (motion_gate.hpp); default 1 um, or 2.5 times the
   // tolerance where that is coarser (the mesh chord, the reduction and the lifts together
   // were measured to cut up to that deep).
@@ -102,6 +106,8 @@ struct PlanSummary {
   double ring_price = 0.0;     // predicted cutting of rings, mm, when set against the
   double parallel_price = 0.0; // chosen direction's passes (choose_direction)
   int rate = 0;
+  int cage_levels = 0; // subdivision steps taken before meshing
+  long cage_faces = 0; // faces of the cage meshed
   long mesh_vertices = 0;
   long mesh_triangles = 0;
   long unreachable_vertices = 0;
