@@ -5,6 +5,7 @@
 // is its own, and is stopped after SUBFEED_BENCH_LIMIT_S seconds (default 600). Baseline:
 // meshing the limit surface alone, in the same way. Aims (issue 22): under 60 s and 1 GiB at
 // 1x and H 0.01, and time growing with the work (area over step-over), not with the faces.
+// SUBFEED_BENCH_WRITE_OBJ=FILE also writes the shell's cage there.
 
 #include "bench_harness.hpp"
 #include "body_cage.hpp"
@@ -21,6 +22,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fmt/format.h>
+#include <fstream>
 #include <sstream>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -119,6 +121,10 @@ int main() {
   const char* limit_text = std::getenv("SUBFEED_BENCH_LIMIT_S");
   const double limit_s = limit_text != nullptr ? std::atof(limit_text) : 600.0;
   const auto body = bench::body_cage_obj(40, 17, 8);
+  // The shell as a user would get it (Y up, centimetres), to plan and verify by hand.
+  if (const char* out = std::getenv("SUBFEED_BENCH_WRITE_OBJ")) {
+    std::ofstream(out) << body.obj;
+  }
   std::istringstream in(body.obj);
   auto cage = geometry::parse_obj(in, "body.obj").value();
   geometry::PartSetup setup;
