@@ -78,13 +78,25 @@ void JobReporter::progress(const drivers::StreamProgress& p) {
   const double percent = j.cut_total_mm > 0.0 ? 100.0 * j.cut_done_mm / j.cut_total_mm : 0.0;
   const double eta_s = (j.minutes_total - j.minutes_done) * 60.0 / speed_;
   const std::string state = state_text(p);
+  // Before the first pass the planner's own stage is what is happening.
+  std::string stage;
+  if (!j.planned && j.passes == 0 && j.stage) {
+    stage = std::string(geometry::stage_name(*j.stage));
+    if (*j.stage == geometry::PlanStage::deformation && j.solve > 0) {
+      stage += fmt::format(" {} of at most {}", j.solve, j.most_solves);
+    }
+  }
   if (json_) {
     std::printf("{\"event\":\"progress\",\"passes\":%ld,\"planned\":%s,\"posted\":%ld,"
                 "\"sent\":%ld,\"done\":%ld,\"cut_percent\":%.2f,\"eta_s\":%.1f,"
-                "\"elapsed_s\":%.2f,\"state\":\"%s\"}\n",
+                "\"elapsed_s\":%.2f,\"state\":\"%s\"%s}\n",
                 j.passes, j.planned ? "true" : "false", j.lines_posted, sent_, done_, percent,
-                eta_s, p.elapsed_s, json_escape(state).c_str());
+                eta_s, p.elapsed_s, json_escape(state).c_str(),
+                stage.empty() ? "" : (",\"stage\":\"" + json_escape(stage) + "\"").c_str());
     std::fflush(stdout);
+  } else if (terminal_ && !stage.empty()) {
+    std::fprintf(stderr, "\rplanning: %s  %-8s\x1b[K", stage.c_str(), state.c_str());
+    shown_ = true;
   } else if (terminal_) {
     std::fprintf(stderr, "\r%s %5.1f%% cut  passes %ld%s  posted %ld  %s %ld  ETA %s%s  %-8s\x1b[K",
                  progress_bar(percent / 100.0).c_str(), percent, j.passes, j.planned ? "" : "+",

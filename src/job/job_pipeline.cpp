@@ -89,8 +89,15 @@ Expected<void> JobPipeline::plan_all() {
     return read_all();
   }
   const auto& input = *spec_.plan;
-  SUBFEED_TRY_ASSIGN(auto planner,
-                     geometry::ToolpathPlanner::prepare(input.cage, input.surface, input.options));
+  const geometry::PlanObserver observer{
+      .stage = [this](geometry::PlanStage s) { stage_ = static_cast<int>(s); },
+      .solve =
+          [this](int solve, int most) {
+            solve_ = solve;
+            most_solves_ = most;
+          }};
+  SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(input.cage, input.surface,
+                                                                      input.options, observer));
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, spec_.header));
   std::optional<cl::ClPose> last;
   double cut_mm = 0.0;
@@ -227,6 +234,11 @@ JobProgress JobPipeline::progress(long acked_line) {
   p.planned = planned_;
   p.passes = passes_;
   p.lines_posted = lines_posted_;
+  if (const int stage = stage_; stage >= 0) {
+    p.stage = static_cast<geometry::PlanStage>(stage);
+  }
+  p.solve = solve_;
+  p.most_solves = most_solves_;
   const std::lock_guard lock(ledger_mutex_);
   while (!ledger_.empty() && ledger_.front().line <= acked_line) {
     acked_ = ledger_.front();

@@ -229,3 +229,21 @@ TEST_CASE("job spec: the tilt is the machine's unless said, and never more than 
   geometry::PlanOptions alone = *plan_options_from(o.plan);
   CHECK(alone.max_tilt_deg == 90.0);
 }
+
+TEST_CASE("job pipeline: progress tells the planner's stages and solves, for the display") {
+  const TempDir dir;
+  auto spec = spec_of(plane_job(dir));
+  const int most = spec.plan->options.refine_iterations;
+  JobPipeline job(std::move(spec));
+  CHECK_FALSE(job.progress(0).stage); // nothing entered yet
+  job.start();
+  (void)drain(job);
+  REQUIRE(job.finish());
+  const auto p = job.progress(0);
+  // The last stage entered before slicing, and the deformation's solves with their bound.
+  REQUIRE(p.stage);
+  CHECK(*p.stage == geometry::PlanStage::clearing);
+  CHECK(p.solve >= 1);
+  CHECK(p.solve <= most);
+  CHECK(p.most_solves == most);
+}

@@ -67,6 +67,10 @@ struct JobProgress {
   double cut_total_mm = 0.0;
   double minutes_done = 0.0; // modelled machine time through the last acknowledged line
   double minutes_total = 0.0;
+  // The last stage the planner entered before slicing (none yet, or CL data read), and
+  // during the deformation the solve it is on and the most there may be.
+  std::optional<geometry::PlanStage> stage;
+  int solve = 0, most_solves = 0;
 };
 
 class JobPipeline {
@@ -111,6 +115,7 @@ private:
   std::atomic<long> lines_posted_{0};
   std::atomic<long> first_motion_line_{0};
   std::atomic<long> plane_{0}, planes_{0};
+  std::atomic<int> stage_{-1}, solve_{0}, most_solves_{0};
   std::atomic<double> cut_planned_{0.0};
   std::mutex ledger_mutex_;
   std::deque<LedgerEntry> ledger_;
