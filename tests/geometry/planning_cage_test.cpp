@@ -100,15 +100,15 @@ TEST_CASE("a plan over a subdivided cage says so and passes the motion gate on t
   REQUIRE(surface);
   geometry::PlanOptions options;
   options.ball_radius = 2.0;
-  options.scallop = 0.05;
-  options.tolerance = 0.002;
-  options.refine_iterations = 6;
+  options.scallop = 0.1;
+  options.tolerance = 0.004;
+  options.refine_iterations = 3;
   auto planner = geometry::ToolpathPlanner::prepare(cage, *surface, options);
   REQUIRE(planner);
   CHECK(planner->summary().cage_levels >= 1);
   CHECK(planner->summary().cage_faces > cage.face_count());
   // Every pose through a gate built from the user's cage, not the planner's.
-  auto gate = geometry::MotionGate::build(cage, *surface, {2.0, 5e-3});
+  auto gate = geometry::MotionGate::build(cage, *surface, {2.0, 1e-2});
   REQUIRE(gate);
   long poses = 0;
   const auto ran = planner->run([&](const cl::ClPose& p) -> Expected<void> {
