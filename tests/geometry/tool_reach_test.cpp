@@ -217,7 +217,8 @@ void check_plate(double a, double height, double r, bool fixed) {
                 << (fixed ? ", fixed axis" : ", axis along the normal"));
   const auto p = plan(plate_over_floor(a, height), options(r, fixed, 90.0));
   const double margin = 1e-3; // the gate's tolerance at this mesh
-  const double cell = std::sqrt(2.0) * geometry::flat_step(r, 0.05);
+  // A cell's diagonal: cells are at most two flat step-overs on a side.
+  const double cell = 2.0 * std::sqrt(2.0) * geometry::flat_step(r, 0.05);
   double nearest = 1e9;
   for (const auto& pose : p.poses) {
     if (pose.kind == cl::MoveKind::feed && pose.tip[2] < 1e-3) {
@@ -230,8 +231,7 @@ void check_plate(double a, double height, double r, bool fixed) {
   CHECK(nearest <= r + cell);
   // The shadow: the plate grown by r, its corners rounded.
   const double exact = a * a + 4 * a * r + std::numbers::pi * r * r;
-  // Cells are at most a flat step-over on a side: the left triangles reach at most a cell's
-  // diagonal past the shadow's edge.
+  // The left triangles reach at most a cell's diagonal past the shadow's edge.
   const double band = (4 * a + 2 * std::numbers::pi * r) * cell;
   REQUIRE(p.summary.out_of_reach.size() == 1);
   const auto& region = p.summary.out_of_reach.front();
