@@ -42,18 +42,15 @@ bool withdraws(const TriangleTree& design, const Eigen::Vector3d& centre,
 std::vector<ReachLimit> surface_reach(const SurfaceMesh& mesh,
                                       const std::vector<Eigen::Vector3d>& clear_balls,
                                       const std::vector<Eigen::Vector3d>& axes,
-                                      const TriangleTree& design, const ReachOptions& options) {
+                                      const TriangleTree& design, double top_z,
+                                      const ReachOptions& options) {
   const double limit_deg = reach_angle_deg(options) + angle_slack_deg;
-  double top = -1e300;
-  for (const auto& p : mesh.points) {
-    top = std::max(top, p.z());
-  }
   std::vector<ReachLimit> reach(mesh.points.size(), ReachLimit::reached);
   split_work(reach.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       if (tilt_deg(mesh.normals[v]) > limit_deg) {
         reach[v] = ReachLimit::tilt;
-      } else if (!withdraws(design, clear_balls[v], axes[v], top, options)) {
+      } else if (!withdraws(design, clear_balls[v], axes[v], top_z, options)) {
         reach[v] = ReachLimit::hidden;
       }
     }

@@ -73,10 +73,10 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     // made steep coarse-tolerance parts cost as their area over the step-over squared: a
     // bowl 64 mm deep went from 12 k to 239 k vertices.)
     const auto& s = finer ? finer->surface : surface;
-    return mesh_surface(finer ? finer->cage : cage, s,
-                        rates_for_tolerance(s, chord, options.max_rate,
-                                            reach_cells * flat_step(options.ball_radius,
-                                                                    options.scallop)));
+    return mesh_surface(
+        finer ? finer->cage : cage, s,
+        rates_for_tolerance(s, chord, options.max_rate,
+                            reach_cells * flat_step(options.ball_radius, options.scallop)));
   }());
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
   const double gate_tolerance =
@@ -279,9 +279,9 @@ void ToolpathPlanner::find_reach(double margin_mm) {
                     .fixed_axis = options_.fixed_axis,
                     .margin = margin_mm,
                     .clearance_mm = options_.clearance};
-  tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, reach_options_);
-  any_hidden_ = std::ranges::find(tool_reach_, ReachLimit::hidden) != tool_reach_.end();
   top_z_ = std::ranges::max(mesh_.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
+  tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, top_z_, reach_options_);
+  any_hidden_ = std::ranges::find(tool_reach_, ReachLimit::hidden) != tool_reach_.end();
   for (int t = 0; t < mesh_.triangle_count(); ++t) {
     if (std::ranges::all_of(mesh_.triangles[static_cast<std::size_t>(t)], [&](int v) {
           return tool_reach_[static_cast<std::size_t>(v)] == ReachLimit::reached;

@@ -40,11 +40,11 @@ struct ReachOptions {
 // Per vertex of `mesh`: reached, or the first limit it fails. `clear_balls` are the ball
 // centres set on each vertex along its normal and lifted clear of `design` (the same
 // mesh's triangle tree); `axes` the tool axis the planner gives each vertex (unit), which
-// the ball withdraws along.
+// the ball withdraws along; `top_z` the mesh's highest point, mm.
 [[nodiscard]] std::vector<ReachLimit> surface_reach(const SurfaceMesh& mesh,
                                                     const std::vector<Eigen::Vector3d>& clear_balls,
                                                     const std::vector<Eigen::Vector3d>& axes,
-                                                    const TriangleTree& design,
+                                                    const TriangleTree& design, double top_z,
                                                     const ReachOptions& options);
 
 // Whether the ball centred at `centre` withdraws as above along `axis` (unit) to over
