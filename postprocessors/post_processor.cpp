@@ -13,7 +13,6 @@ namespace subfeed::post {
 namespace {
 
 constexpr int max_split_depth = 30;
-constexpr double moved = 1e-9; // mm or deg: less is no motion
 // Joint-linear motion is checked at these fractions of a block; the margin covers the
 // deviation between samples (the tests sample densely to hold the post to the tolerance).
 // Quarters are not enough: where C turns fast while the tip creeps (passing near the pole)
@@ -192,7 +191,7 @@ Expected<void> PostProcessor::position(const Placed& target, bool feed_in) {
   const long line = target.pose.line;
   bool turns = !last_;
   for (std::size_t r = 3; r < 6; ++r) {
-    turns = turns || std::abs(machine_at_[r] - above.joints[r]) > moved;
+    turns = turns || std::abs(machine_at_[r] - above.joints[r]) > no_motion;
   }
   if (turns) {
     SUBFEED_TRY(up_to_safe_z(line));
@@ -226,7 +225,7 @@ bool PostProcessor::within_tolerance(const Placed& from, const Placed& to) const
   }
   bool turns = false;
   for (std::size_t r = 3; r < 6; ++r) {
-    turns = turns || std::abs(from.joints[r] - to.joints[r]) > moved;
+    turns = turns || std::abs(from.joints[r] - to.joints[r]) > no_motion;
   }
   if (!turns) {
     return true; // linear axes alone move the tip on a straight line
@@ -283,13 +282,13 @@ Expected<void> PostProcessor::cut_segment(const Placed& from, const Placed& to, 
     const auto length = programmed_length(span.from, b);
     bool turns = false;
     for (std::size_t r = 3; r < 6; ++r) {
-      turns = turns || std::abs(span.from.joints[r] - b.joints[r]) > moved;
+      turns = turns || std::abs(span.from.joints[r] - b.joints[r]) > no_motion;
     }
     auto block = block_for(b, Motion::linear);
     block.link = link;
     // Under TCP F is the tip's feed (slowed where an axis would exceed its max_feed); a
     // turn in place has no tip feed and goes by inverse time.
-    const bool inverse = options_.tcp == TcpMode::off ? turns : length <= moved;
+    const bool inverse = options_.tcp == TcpMode::off ? turns : length <= no_motion;
     block.feed_mode = inverse ? FeedMode::inverse_time : FeedMode::per_minute;
     block.feed = inverse ? 1.0 / minutes : length / minutes;
     SUBFEED_TRY(emit(block, &b.joints));

@@ -16,8 +16,6 @@ namespace subfeed::post {
 
 namespace {
 
-constexpr double moved = 1e-9;
-
 void note(Finding& finding, double value, long line) {
   if (value > finding.value) {
     finding = {value, line};
@@ -230,7 +228,7 @@ private:
       return distance(from_tip, tip_) / mode_.feed;
     }
     const double linear = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);
-    if (linear > moved) {
+    if (linear > no_motion) {
       return linear / mode_.feed;
     }
     return std::hypot(to[3] - from[3], to[4] - from[4], to[5] - from[5]) / mode_.feed;

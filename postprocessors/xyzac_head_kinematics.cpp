@@ -9,13 +9,10 @@ namespace subfeed::post {
 
 namespace {
 
-constexpr double deg = radians_per_degree;
-constexpr double pole = 1e-12; // sin(A) below this: the tool is along C (round-off only)
-
 std::array<double, 3> axis_of(double p, double q, double a_deg, double c_deg) {
-  const double sa = std::sin(a_deg * deg);
-  return {p * q * sa * std::sin(c_deg * deg), -p * sa * std::cos(c_deg * deg),
-          std::cos(a_deg * deg)};
+  const double sa = std::sin(a_deg * radians_per_degree);
+  return {p * q * sa * std::sin(c_deg * radians_per_degree),
+          -p * sa * std::cos(c_deg * radians_per_degree), std::cos(a_deg * radians_per_degree)};
 }
 
 } // namespace
@@ -41,11 +38,11 @@ JointPosition XyzacHeadKinematics::joints_for(const ToolPose& pose, double a_deg
 std::vector<JointPosition> XyzacHeadKinematics::inverse(const ToolPose& pose,
                                                         const JointPosition& near) const {
   const auto& k = pose.axis;
-  const double a = std::acos(std::clamp(k[2], -1.0, 1.0)) / deg;
-  if (std::hypot(k[0], k[1]) < pole) {
+  const double a = std::acos(std::clamp(k[2], -1.0, 1.0)) / radians_per_degree;
+  if (std::hypot(k[0], k[1]) < rotary_pole_sine) {
     return {joints_for(pose, a, near[5])};
   }
-  const double c = std::atan2(p_ * q_ * k[0], -p_ * k[1]) / deg;
+  const double c = std::atan2(p_ * q_ * k[0], -p_ * k[1]) / radians_per_degree;
   return {joints_for(pose, a, c), joints_for(pose, -a, wrap_degrees(c + 180.0))};
 }
 

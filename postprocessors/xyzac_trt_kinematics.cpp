@@ -7,22 +7,14 @@
 
 namespace subfeed::post {
 
-namespace {
-
-constexpr double deg = radians_per_degree;
-// Below this sin(A) the tool is along the C axis and C is free (1e-12: round-off only).
-constexpr double pole = 1e-12;
-
-} // namespace
-
 XyzacTrtKinematics::XyzacTrtKinematics(const RotaryGeometry& geometry)
     : g_(geometry), p_(geometry.tilt_direction), q_(geometry.c_direction),
       dz_(geometry.z_offset + geometry.tool_length) {}
 
 JointPosition XyzacTrtKinematics::joints_for(const ToolPose& pose, double a_deg,
                                              double c_deg) const {
-  const double ca = std::cos(a_deg * deg), sa = std::sin(a_deg * deg);
-  const double cc = std::cos(c_deg * deg), sc = std::sin(c_deg * deg);
+  const double ca = std::cos(a_deg * radians_per_degree), sa = std::sin(a_deg * radians_per_degree);
+  const double cc = std::cos(c_deg * radians_per_degree), sc = std::sin(c_deg * radians_per_degree);
   const double qx = pose.tip[0] - g_.pivot[0];
   const double qy = pose.tip[1] - g_.pivot[1];
   const double qz = pose.tip[2] - g_.pivot[2];
@@ -42,16 +34,16 @@ JointPosition XyzacTrtKinematics::joints_for(const ToolPose& pose, double a_deg,
 std::vector<JointPosition> XyzacTrtKinematics::inverse(const ToolPose& pose,
                                                        const JointPosition& near) const {
   const auto& k = pose.axis;
-  const double a = std::acos(std::clamp(k[2], -1.0, 1.0)) / deg;
-  if (std::hypot(k[0], k[1]) < pole) {
+  const double a = std::acos(std::clamp(k[2], -1.0, 1.0)) / radians_per_degree;
+  if (std::hypot(k[0], k[1]) < rotary_pole_sine) {
     return {joints_for(pose, a, near[5])}; // along the C axis: C keeps its value
   }
-  const double c = std::atan2(p_ * q_ * k[0], -p_ * k[1]) / deg;
+  const double c = std::atan2(p_ * q_ * k[0], -p_ * k[1]) / radians_per_degree;
   return {joints_for(pose, a, c), joints_for(pose, -a, wrap_degrees(c + 180.0))};
 }
 
 ToolPose XyzacTrtKinematics::forward(const JointPosition& j) const {
-  const double a = j[3] * deg, c = j[5] * deg;
+  const double a = j[3] * radians_per_degree, c = j[5] * radians_per_degree;
   const double ca = std::cos(a), sa = std::sin(a), cc = std::cos(c), sc = std::sin(c);
   // W = Rx(p A) (J - D - pivot) + D, then P = Rz(q C) W + pivot.
   const double ux = j[0] - g_.pivot[0];

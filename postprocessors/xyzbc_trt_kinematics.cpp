@@ -7,21 +7,14 @@
 
 namespace subfeed::post {
 
-namespace {
-
-constexpr double deg = radians_per_degree;
-constexpr double pole = 1e-12; // sin(B) below this: the tool is along C (round-off only)
-
-} // namespace
-
 XyzbcTrtKinematics::XyzbcTrtKinematics(const RotaryGeometry& geometry)
     : g_(geometry), p_(geometry.tilt_direction), q_(geometry.c_direction),
       dz_(geometry.z_offset + geometry.tool_length) {}
 
 JointPosition XyzbcTrtKinematics::joints_for(const ToolPose& pose, double b_deg,
                                              double c_deg) const {
-  const double cb = std::cos(b_deg * deg), sb = std::sin(b_deg * deg);
-  const double cc = std::cos(c_deg * deg), sc = std::sin(c_deg * deg);
+  const double cb = std::cos(b_deg * radians_per_degree), sb = std::sin(b_deg * radians_per_degree);
+  const double cc = std::cos(c_deg * radians_per_degree), sc = std::sin(c_deg * radians_per_degree);
   const double qx = pose.tip[0] - g_.pivot[0];
   const double qy = pose.tip[1] - g_.pivot[1];
   const double qz = pose.tip[2] - g_.pivot[2];
@@ -41,16 +34,16 @@ JointPosition XyzbcTrtKinematics::joints_for(const ToolPose& pose, double b_deg,
 std::vector<JointPosition> XyzbcTrtKinematics::inverse(const ToolPose& pose,
                                                        const JointPosition& near) const {
   const auto& k = pose.axis;
-  const double b = std::acos(std::clamp(k[2], -1.0, 1.0)) / deg;
-  if (std::hypot(k[0], k[1]) < pole) {
+  const double b = std::acos(std::clamp(k[2], -1.0, 1.0)) / radians_per_degree;
+  if (std::hypot(k[0], k[1]) < rotary_pole_sine) {
     return {joints_for(pose, b, near[5])};
   }
-  const double c = std::atan2(p_ * q_ * k[1], p_ * k[0]) / deg;
+  const double c = std::atan2(p_ * q_ * k[1], p_ * k[0]) / radians_per_degree;
   return {joints_for(pose, b, c), joints_for(pose, -b, wrap_degrees(c + 180.0))};
 }
 
 ToolPose XyzbcTrtKinematics::forward(const JointPosition& j) const {
-  const double b = j[4] * deg, c = j[5] * deg;
+  const double b = j[4] * radians_per_degree, c = j[5] * radians_per_degree;
   const double cb = std::cos(b), sb = std::sin(b), cc = std::cos(c), sc = std::sin(c);
   // W = Ry(p B) (J - D - pivot) + D, then P = Rz(q C) W + pivot.
   const double ux = j[0] - g_.x_offset - g_.pivot[0];

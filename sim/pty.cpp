@@ -1,5 +1,7 @@
 #include "sim/pty.hpp"
 
+#include "os_failure.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -12,14 +14,6 @@
 #include <utility>
 
 namespace subfeed::sim {
-
-namespace {
-
-std::unexpected<Error> os_failure(const std::string& what, const std::string& where) {
-  return fail(ErrorCode::machine_fault, what + ": " + std::strerror(errno), {where, 0, {}});
-}
-
-} // namespace
 
 Expected<Pty> Pty::open() {
   const int fd = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);

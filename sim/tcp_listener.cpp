@@ -1,5 +1,7 @@
 #include "sim/tcp_listener.hpp"
 
+#include "os_failure.hpp"
+
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstring>
@@ -13,14 +15,6 @@
 #include <utility>
 
 namespace subfeed::sim {
-
-namespace {
-
-std::unexpected<Error> os_failure(const std::string& what, const std::string& where) {
-  return fail(ErrorCode::machine_fault, what + ": " + std::strerror(errno), {where, 0, {}});
-}
-
-} // namespace
 
 Expected<TcpListener> TcpListener::open(const std::string& host, int port) {
   const std::string where = host + ":" + std::to_string(port);

@@ -1,5 +1,7 @@
 #include "geometry/motion_gate.hpp"
 
+#include "geometry/pose_vectors.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -12,15 +14,6 @@ namespace {
 
 constexpr double piece_turn_rad = 0.5 * std::numbers::pi / 180.0;
 constexpr int most_segments = 256; // Bfr's largest tessellation rate
-
-Eigen::Vector3d tip_of(const cl::ClPose& p) {
-  return {p.tip[0], p.tip[1], p.tip[2]};
-}
-
-Eigen::Vector3d axis_of(const cl::ClPose& p) {
-  const Eigen::Vector3d a{p.axis[0], p.axis[1], p.axis[2]};
-  return a.norm() > 0.0 ? a.normalized() : Eigen::Vector3d::UnitZ();
-}
 
 const char* move_name(cl::MoveKind kind) {
   switch (kind) {

@@ -5,6 +5,7 @@
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/point_grid.hpp"
+#include "geometry/pose_vectors.hpp"
 #include "geometry/split_work.hpp"
 #include "geometry/step_over.hpp"
 
@@ -37,13 +38,6 @@ constexpr double ring_allowance = 0.02;
 cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::MoveKind kind,
                    double feed) {
   return {{tip.x(), tip.y(), tip.z()}, {axis.x(), axis.y(), axis.z()}, kind, feed, 0};
-}
-
-Eigen::Vector3d tip_of(const cl::ClPose& p) {
-  return {p.tip[0], p.tip[1], p.tip[2]};
-}
-Eigen::Vector3d axis_of(const cl::ClPose& p) {
-  return {p.axis[0], p.axis[1], p.axis[2]};
 }
 
 } // namespace

@@ -67,7 +67,7 @@ PlanSummary summary_under_3mm_ball(const Cage& cage, std::optional<double> toler
 
 } // namespace
 
-TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
+TEST_CASE("a bowl narrower than the ball: one region, at its bottom", "[slow]") {
   // z = 0.25 (x^2 + y^2): radius 2 mm at the bottom, growing outward; a 3 mm ball reaches
   // only where the radius across the passes has grown past 3 mm.
   // A 2 um mesh places the region's box well within the checks' 0.1 mm.
@@ -85,7 +85,7 @@ TEST_CASE("a bowl narrower than the ball: one region, at its bottom") {
   CHECK(std::abs(size.x() - size.y()) < 0.1);
 }
 
-TEST_CASE("a trough narrower than the ball along the passes is found too") {
+TEST_CASE("a trough narrower than the ball along the passes is found too", "[slow]") {
   // z = 0.25 x^2, flat along y; the passes run along x (planes across y), so the radius
   // across them is infinite, but along them it is 2 mm at the bottom: a 3 mm ball misses
   // the strip where 0.5 / (1 + x^2 / 4)^1.5 >= 1/3, |x| <= 1.114 mm, the trough's length.
@@ -98,7 +98,7 @@ TEST_CASE("a trough narrower than the ball along the passes is found too") {
   CHECK(r.high.y() - r.low.y() > 10.0);
 }
 
-TEST_CASE("the material a bowl narrower than the ball keeps at its bottom, exactly") {
+TEST_CASE("the material a bowl narrower than the ball keeps at its bottom, exactly", "[slow]") {
   // z = a rho^2 has radius 1/(2a) at its bottom. A ball of radius r > 1/(2a) set on the axis
   // touches the walls at rho^2 = r^2 - 1/(4a^2) and stays a (r - 1/(2a))^2 above the bottom:
   // that is the material left there. (A cage sampling a quadratic has the same quadratic,
