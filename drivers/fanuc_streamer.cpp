@@ -69,6 +69,9 @@ private:
     bool restored = !options_.from_line;
     FanucBlock block;
     while (true) {
+      while (!program_.ready(0ms)) { // the program's writer is still at work
+        SUBFEED_TRY(service(20ms));  // a stop or the control's DC3/DC1 is heard meanwhile
+      }
       SUBFEED_TRY_ASSIGN(const bool more, program_.next(block));
       if (!more) {
         if (!restored) {

@@ -651,6 +651,9 @@ private:
       SUBFEED_TRY(turn_and_clear_latch());
       while (!end_of_file && !fault_) { // not one line more once a fault has been read
         if (!next) {
+          if (!source_.ready(until_next_poll())) {
+            break; // the program's writer is still at work: serve the controller meanwhile
+          }
           auto read = source_.next();
           if (!read) {
             return source_failed(read.error());

@@ -18,16 +18,47 @@ Expected<void> LiveGcode::rewind() {
   return {};
 }
 
-Expected<std::optional<SourceLine>> LiveGcode::next() {
-  while (auto item = queue_->pop()) {
-    if (!*item) {
-      return std::unexpected(item->error());
+Expected<SourceLine> LiveGcode::prepare(Expected<std::string> item) {
+  if (!item) {
+    return std::unexpected(item.error());
+  }
+  ++line_;
+  SUBFEED_TRY_ASSIGN(auto prepared,
+                     prepare_line(*item, rules_, {name_, static_cast<int>(line_), {}}));
+  return SourceLine{line_, std::move(prepared)};
+}
+
+bool LiveGcode::ready(std::chrono::milliseconds wait) {
+  while (!ready_) {
+    if (!queue_->ready(wait)) {
+      return false;
     }
-    ++line_;
-    SUBFEED_TRY_ASSIGN(auto prepared,
-                       prepare_line(**item, rules_, {name_, static_cast<int>(line_), {}}));
-    if (!prepared.text.empty()) {
-      return SourceLine{line_, std::move(prepared)};
+    auto item = queue_->pop();
+    if (!item) {
+      return true; // closed and drained: next() ends at once
+    }
+    auto line = prepare(std::move(*item));
+    if (!line || !line->line.text.empty()) {
+      ready_ = std::move(line);
+    }
+    wait = std::chrono::milliseconds(0); // one wait per call, however many blank lines
+  }
+  return true;
+}
+
+Expected<std::optional<SourceLine>> LiveGcode::next() {
+  if (ready_) {
+    auto line = std::move(*ready_);
+    ready_.reset();
+    if (!line) {
+      return std::unexpected(line.error());
+    }
+    return std::move(*line);
+  }
+  while (auto item = queue_->pop()) {
+    SUBFEED_TRY_ASSIGN(auto line, prepare(std::move(*item)));
+    if (!line.line.text.empty()) {
+      return line;
     }
   }
   return std::optional<SourceLine>();
@@ -64,6 +95,10 @@ Expected<void> LiveBlocks::rewind() {
     return std::unexpected(read_twice(name_));
   }
   return {};
+}
+
+bool LiveBlocks::ready(std::chrono::milliseconds wait) {
+  return peeked_ || queue_->ready(wait);
 }
 
 Expected<bool> LiveBlocks::next(FanucBlock& block) {

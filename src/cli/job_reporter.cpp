@@ -81,9 +81,17 @@ void JobReporter::progress(const drivers::StreamProgress& p) {
   // Before the first pass the planner's own stage is what is happening.
   std::string stage;
   if (!j.planned && j.passes == 0 && j.stage) {
+    if (j.stage != stage_seen_) {
+      stage_seen_ = j.stage;
+      stage_seen_at_ = now;
+    }
     stage = std::string(geometry::stage_name(*j.stage));
     if (*j.stage == geometry::PlanStage::deformation && j.solve > 0) {
       stage += fmt::format(" {} of at most {}", j.solve, j.most_solves);
+    } else if (j.stage_share >= 0.0) {
+      const double spent = std::chrono::duration<double>(now - stage_seen_at_).count();
+      stage +=
+          fmt::format(" {:.0f}% ETA {}", 100.0 * j.stage_share, eta_text(spent, j.stage_share));
     }
   }
   if (json_) {

@@ -1,7 +1,8 @@
 #pragma once
 // How `run` shows a job: one progress line on a terminal with every stage in it (passes
 // planned, blocks posted, lines acknowledged, % of the cutting length done, ETA from the
-// motion-time model, controller state), JSON events with the same fields (--json), or
+// motion-time model, controller state; before the first pass the planner's stage, with its
+// share done and ETA where it tells one), JSON events with the same fields (--json), or
 // nothing (--quiet). Controller messages, errors and the final summary go through the
 // StreamReporter that `send` uses. Also notes when the first block left and when the first
 // cutting block left, for the time-to-first-block figure.
@@ -48,6 +49,9 @@ private:
   double speed_;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_update_{};
+  // The planner's stage last shown and when it was first seen, for that stage's ETA.
+  std::optional<geometry::PlanStage> stage_seen_;
+  std::chrono::steady_clock::time_point stage_seen_at_{};
   std::optional<double> first_block_s_;
   std::optional<double> first_move_s_;
   double streamed_s_ = 0.0;

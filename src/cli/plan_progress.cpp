@@ -27,11 +27,24 @@ void PlanProgress::show(const std::string& text, bool always) {
 
 geometry::PlanObserver PlanProgress::observer() {
   return {[this](geometry::PlanStage s) { stage(s); },
-          [this](int solve_number, int most) { solve(solve_number, most); }};
+          [this](int solve_number, int most) { solve(solve_number, most); },
+          [this](double done) { share(done); }};
 }
 
 void PlanProgress::stage(geometry::PlanStage stage) {
-  show(std::string(geometry::stage_name(stage)), true);
+  stage_name_ = geometry::stage_name(stage);
+  stage_start_ = std::chrono::steady_clock::now();
+  stage_share_shown_ = false;
+  show(stage_name_, true);
+}
+
+void PlanProgress::share(double done) {
+  const double spent =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
+  show(fmt::format("{} {} {:5.1f}%  ETA {}", stage_name_, progress_bar(done), 100.0 * done,
+                   eta_text(spent, done)),
+       !stage_share_shown_); // the first always: a short stage shows its bar too
+  stage_share_shown_ = true;
 }
 
 void PlanProgress::solve(int solve, int most) {
@@ -53,9 +66,8 @@ void PlanProgress::plane(long plane, long planes) {
   }
   const double done = planes > 0 ? static_cast<double>(plane) / static_cast<double>(planes) : 0.0;
   const double spent = std::chrono::duration<double>(now - slicing_start_).count();
-  const std::string eta = done > 0.02 ? clock_text(spent * (1.0 - done) / done) : "--:--";
   show(fmt::format("{} {:5.1f}%  plane {} of {}  ETA {}", progress_bar(done), 100.0 * done, plane,
-                   planes, eta),
+                   planes, eta_text(spent, done)),
        plane == 0);
 }
 

@@ -18,4 +18,8 @@ std::string progress_bar(double fraction) {
          std::string(static_cast<std::size_t>(width - filled), '.') + "]";
 }
 
+std::string eta_text(double spent, double done) {
+  return done > 0.02 ? clock_text(spent * (1.0 - std::min(done, 1.0)) / done) : "--:--";
+}
+
 } // namespace subfeed::cli

@@ -61,13 +61,13 @@ MotionGate::MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, d
 }
 
 Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& surface,
-                                       const GateOptions& options) {
+                                       const GateOptions& options, StageShare* share) {
   if (!(options.ball_radius > 0.0) || !(options.tolerance > 0.0)) {
     return fail(ErrorCode::bad_input, "the gate needs a ball radius and tolerance above 0");
   }
   const double wanted = options.tolerance / 4.0;
   const auto rates = rates_for_tolerance(surface, wanted, most_segments);
-  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates));
+  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates, share));
   return MotionGate(options, std::make_unique<SurfaceMesh>(std::move(mesh)),
                     achieved_chord(surface, rates, wanted));
 }

@@ -82,7 +82,7 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
 }
 
 Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
-                                   const std::vector<int>& face_rates) {
+                                   const std::vector<int>& face_rates, StageShare* share) {
   SurfaceMesh mesh;
   std::map<std::pair<long, long>, int> edge_rate;
   for (int f = 0; f < surface.face_count(); ++f) {
@@ -98,7 +98,11 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
   // edge's inner points), not by position, since two faces' approximations of the same
   // edge may differ in the last digits near irregular features.
   std::map<std::array<long, 3>, std::vector<int>> shared;
+  const auto faces = static_cast<std::size_t>(surface.face_count());
   for (int f = 0; f < surface.face_count(); ++f) {
+    if (share != nullptr) {
+      share->tell(0, static_cast<std::size_t>(f), faces);
+    }
     if (!surface.has_patch(f)) {
       continue;
     }

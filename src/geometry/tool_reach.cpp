@@ -43,11 +43,14 @@ std::vector<ReachLimit> surface_reach(const SurfaceMesh& mesh,
                                       const std::vector<Eigen::Vector3d>& clear_balls,
                                       const std::vector<Eigen::Vector3d>& axes,
                                       const TriangleTree& design, double top_z,
-                                      const ReachOptions& options) {
+                                      const ReachOptions& options, StageShare* share) {
   const double limit_deg = reach_angle_deg(options) + angle_slack_deg;
   std::vector<ReachLimit> reach(mesh.points.size(), ReachLimit::reached);
   split_work(reach.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
+      if (share != nullptr) {
+        share->tell(begin, v, end);
+      }
       if (tilt_deg(mesh.normals[v]) > limit_deg) {
         reach[v] = ReachLimit::tilt;
       } else if (!withdraws(design, clear_balls[v], axes[v], top_z, options)) {

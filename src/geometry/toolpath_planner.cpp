@@ -12,8 +12,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
+#include <thread>
 #include <unordered_map>
 
 namespace subfeed::geometry {
@@ -67,19 +69,22 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     // made steep coarse-tolerance parts cost as their area over the step-over squared: a
     // bowl 64 mm deep went from 12 k to 239 k vertices.)
     const auto& s = finer ? finer->surface : surface;
+    StageShare share(observer.share);
     return mesh_surface(
         finer ? finer->cage : cage, s,
         rates_for_tolerance(s, chord, options.max_rate,
-                            reach_cells * flat_step(options.ball_radius, options.scallop)));
+                            reach_cells * flat_step(options.ball_radius, options.scallop)),
+        &share);
   }());
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
   const double gate_tolerance =
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
   SUBFEED_TRY_ASSIGN(auto gate, [&] {
     const auto clock = enter(PlanStage::gate_mesh);
+    StageShare share(observer.share);
     return finer ? MotionGate::build(finer->cage, finer->surface,
-                                     {options.ball_radius, gate_tolerance})
-                 : MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance});
+                                     {options.ball_radius, gate_tolerance}, &share)
+                 : MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}, &share);
   }());
   ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
   planner.summary_.cage_levels = finer ? finer->levels : 0;
@@ -92,7 +97,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   }
   {
     const auto clock = enter(PlanStage::reach);
-    planner.find_reach(gate_tolerance);
+    StageShare share(observer.share, options.fixed_axis ? 2 : 3); // balls, axes, reach
+    planner.find_reach(gate_tolerance, share);
   }
   DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
@@ -256,17 +262,20 @@ void ToolpathPlanner::index_triangles() {
   }
 }
 
-void ToolpathPlanner::find_reach(double margin_mm) {
+void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
   const TriangleTree design = design_tree();
-  set_clear_balls(design);
+  set_clear_balls(design, share);
+  share.next_step();
   std::vector<Eigen::Vector3d> axes(mesh_.points.size(), Eigen::Vector3d::UnitZ());
   if (!options_.fixed_axis) {
     const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
     split_work(axes.size(), [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
+        share.tell(begin, v, end);
         axes[v] = vertex_axis(mesh_.points[v], mesh_.normals[v], triangles);
       }
     });
+    share.next_step();
   }
   reach_options_ = {.ball_radius = options_.ball_radius,
                     .max_tilt_deg = options_.max_tilt_deg,
@@ -274,7 +283,7 @@ void ToolpathPlanner::find_reach(double margin_mm) {
                     .margin = margin_mm,
                     .clearance_mm = options_.clearance};
   top_z_ = std::ranges::max(mesh_.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
-  tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, top_z_, reach_options_);
+  tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, top_z_, reach_options_, &share);
   any_hidden_ = std::ranges::find(tool_reach_, ReachLimit::hidden) != tool_reach_.end();
   for (int t = 0; t < mesh_.triangle_count(); ++t) {
     if (std::ranges::all_of(mesh_.triangles[static_cast<std::size_t>(t)], [&](int v) {
@@ -582,11 +591,12 @@ double ToolpathPlanner::clearance_lift(const TriangleTree& design, const Eigen::
   return total;
 }
 
-void ToolpathPlanner::set_clear_balls(const TriangleTree& design) {
+void ToolpathPlanner::set_clear_balls(const TriangleTree& design, StageShare& share) {
   const double r = options_.ball_radius;
   clear_balls_.resize(mesh_.points.size());
   split_work(clear_balls_.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
+      share.tell(begin, v, end);
       const Eigen::Vector3d& n = mesh_.normals[v];
       clear_balls_[v] = mesh_.points[v] + r * n;
       clear_balls_[v] += clearance_lift(design, clear_balls_[v], n) * n;
@@ -766,55 +776,76 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>&
   return passes;
 }
 
-Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
-  const StageClock clock(summary_.times[PlanStage::slicing]);
-  // Only the triangles in reach: a pass ends where the tool's reach does.
-  const auto cut = triangles_cut();
+void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out,
+                                 const std::vector<std::array<int, 3>>& cut,
+                                 const TriangleTree& design, const PointGrid& triangles) {
   const auto inserted_depth = depth_cut();
   MeshSlicer slicer(cut, deformation_.deformed);
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;
   const long per_plane = 1L << max_insertion_depth;
-  const TriangleTree design = design_tree();
-  const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
-  long cut_levels = 0;
-  // Between rings, inserted passes are short pieces spread round the part (behind each
-  // hollow it must go round); cut ring by ring they would each cost a retract and a rapid
-  // across it. They are cut after the rings instead, nearest first, mostly linked by feed.
   const bool rings = !deformation_.ring_centres.empty();
-  std::vector<std::vector<PassPoint>> inserted;
+  long cut_count = 0;
   for (long index = 0; index <= (planes - 1) * per_plane; ++index) {
     const int depth = level_depth(index);
     if (depth > deepest) {
       continue;
     }
-    if (progress && depth == 0) {
-      progress(index / per_plane, planes);
-    }
-    const double level = first + static_cast<double>(index) * step / static_cast<double>(per_plane);
-    auto passes = cut_level(slicer, inserted_depth, level, depth, design);
-    if (passes.empty()) {
-      continue;
-    }
+    CutLevel level;
+    level.plane = depth == 0 ? index / per_plane : -1;
+    const double at = first + static_cast<double>(index) * step / static_cast<double>(per_plane);
+    auto passes = cut_level(slicer, inserted_depth, at, depth, design);
     // Every other level the other way round for zig-zag.
-    if (options_.zigzag && cut_levels % 2 == 1) {
+    if (!passes.empty() && options_.zigzag && cut_count % 2 == 1) {
       std::ranges::reverse(passes);
       for (auto& pass : passes) {
         std::ranges::reverse(pass);
       }
     }
-    ++cut_levels;
+    cut_count += passes.empty() ? 0 : 1;
     for (auto& whole : passes) {
       set_axes(whole, triangles);
       for (auto& pass : within_reach(std::move(whole), design)) {
-        if (rings && depth > 0) {
-          inserted.push_back(std::move(pass));
-        } else {
-          SUBFEED_TRY(emit_pass(pass, sink, design));
-        }
+        (rings && depth > 0 ? level.inserted : level.passes).push_back(std::move(pass));
       }
     }
+    if ((level.plane >= 0 || !level.passes.empty() || !level.inserted.empty()) &&
+        !out.push(std::move(level))) {
+      return; // the linking side has stopped
+    }
   }
+  out.close();
+}
+
+Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
+  const StageClock clock(summary_.times[PlanStage::slicing]);
+  // Only the triangles in reach: a pass ends where the tool's reach does.
+  const auto cut = triangles_cut();
+  const TriangleTree design = design_tree();
+  const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
+  // Two cores: a thread cuts the levels into passes while this one links them, gates every
+  // pose and hands it on, in the same order as one thread would. The cutting side writes only
+  // the slicer, the lifted points and the path's balls; this side only the last pose, the
+  // gate and the summary.
+  BoundedQueue<CutLevel> levels(levels_ahead);
+  std::jthread cutter([&] { cut_levels(levels, cut, design, triangles); });
+  // Between rings, inserted passes are short pieces spread round the part (behind each
+  // hollow it must go round); cut ring by ring they would each cost a retract and a rapid
+  // across it. They are cut after the rings instead, nearest first, mostly linked by feed.
+  std::vector<std::vector<PassPoint>> inserted;
+  while (auto level = levels.pop()) {
+    if (progress && level->plane >= 0) {
+      progress(level->plane, deformation_.planes.planes);
+    }
+    for (const auto& pass : level->passes) {
+      if (auto emitted = emit_pass(pass, sink, design); !emitted) {
+        levels.close(); // the cutter stops at its next level
+        return emitted;
+      }
+    }
+    std::ranges::move(level->inserted, std::back_inserter(inserted));
+  }
+  cutter.join();
   SUBFEED_TRY(emit_nearest_first(std::move(inserted), sink, design));
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.

@@ -89,13 +89,17 @@ Expected<void> JobPipeline::plan_all() {
     return read_all();
   }
   const auto& input = *spec_.plan;
-  const geometry::PlanObserver observer{
-      .stage = [this](geometry::PlanStage s) { stage_ = static_cast<int>(s); },
-      .solve =
-          [this](int solve, int most) {
-            solve_ = solve;
-            most_solves_ = most;
-          }};
+  const geometry::PlanObserver observer{.stage =
+                                            [this](geometry::PlanStage s) {
+                                              stage_share_ = -1.0;
+                                              stage_ = static_cast<int>(s);
+                                            },
+                                        .solve =
+                                            [this](int solve, int most) {
+                                              solve_ = solve;
+                                              most_solves_ = most;
+                                            },
+                                        .share = [this](double done) { stage_share_ = done; }};
   SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(input.cage, input.surface,
                                                                       input.options, observer));
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, spec_.header));
@@ -239,6 +243,7 @@ JobProgress JobPipeline::progress(long acked_line) {
   }
   p.solve = solve_;
   p.most_solves = most_solves_;
+  p.stage_share = stage_share_;
   const std::lock_guard lock(ledger_mutex_);
   while (!ledger_.empty() && ledger_.front().line <= acked_line) {
     acked_ = ledger_.front();

@@ -149,6 +149,8 @@ TEST_CASE("plan shows its progress on a terminal and erases it before the summar
     CHECK(any_frame(literal(stage)));
   }
   CHECK(any_frame(literal("deformation solve 1 of at most 60  ETA --:--")));
+  // A stage that tells its share shows it, with an ETA once there is a rate to tell one.
+  CHECK(any_frame(R"(finding what the tool reaches \[[#.]+\] +\d+\.\d%  ETA (\d\d:\d\d|--:--))"));
   CHECK(any_frame(R"(\[[#.]+\] +\d+\.\d%  plane \d+ of \d+  ETA (\d\d:\d\d|--:--))"));
 }
 

@@ -2,10 +2,12 @@
 
 #include "drivers/fanuc_program.hpp"
 #include "drivers/fanuc_streamer.hpp"
+#include "drivers/live_program.hpp"
 #include "sim/fanuc_sim.hpp"
 #include "sim/pty.hpp"
 #include "support/catch_printers.hpp"
 #include "support/grbl_fixture.hpp"
+#include "support/slow_program_writer.hpp"
 #include "support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
@@ -319,4 +321,23 @@ TEST_CASE("DNC: a port that accepts nothing (CTS held low) is reported", "[pty]"
   CHECK(result.error().message.starts_with(
       "the port took nothing for 2000 ms (hardware handshake: CTS held low?)"));
   CHECK(result.error().message.find("last block sent: line ") != std::string::npos);
+}
+
+TEST_CASE("DNC: a stop while the program's writer pauses ends at once", "[pty]") {
+  FanucBench bench(fast_control());
+  subfeed::drivers::ProgramQueue queue(4);
+  subfeed::drivers::LiveBlocks program("live.nc", queue);
+  auto writer = subfeed::testing::write_slowly(queue, blocks_of(moves(6)), 4, 20s);
+  auto inbox = subfeed::drivers::ControlInbox::create().value();
+  std::jthread stopper([&inbox] {
+    std::this_thread::sleep_for(800ms);
+    inbox->push({subfeed::drivers::ControlCommand::Kind::stop, 0});
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = subfeed::drivers::stream_fanuc(*bench.port, program, bench.options,
+                                                     inbox.get(), bench.observer);
+  queue.close();
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::stopped);
+  CHECK(std::chrono::steady_clock::now() - start < 3s);
 }

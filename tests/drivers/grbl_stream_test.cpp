@@ -1,11 +1,13 @@
 // The real sender over a real pty against the simulated GRBL: every behaviour and fault.
 
 #include "drivers/gcode_source.hpp"
+#include "drivers/live_program.hpp"
 #include "drivers/tcp_transport.hpp"
 #include "sim/pty.hpp"
 #include "sim/tcp_listener.hpp"
 #include "support/catch_printers.hpp"
 #include "support/grbl_fixture.hpp"
+#include "support/slow_program_writer.hpp"
 
 #include <catch2/catch.hpp>
 #include <thread>
@@ -510,4 +512,69 @@ TEST_CASE("a controller that hangs, even on its last line, is reported as silent
   REQUIRE_FALSE(result);
   CHECK(result.error().code == ErrorCode::machine_fault);
   CHECK(result.error().message.starts_with("no answer from the controller for 500 ms"));
+}
+
+namespace {
+
+std::vector<std::string> numbered_moves(int count) {
+  std::vector<std::string> lines{"G21G90", "(a comment the sender drops)", ""};
+  for (int i = 1; i <= count; ++i) {
+    lines.push_back("G1X" + std::to_string(i) + "F1000");
+  }
+  return lines;
+}
+
+} // namespace
+
+TEST_CASE("a program still being written: the controller is served while the writer pauses",
+          "[pty]") {
+  // The writer pauses three times as long as the controller may stay silent: the sender
+  // keeps polling, so the pause is no silence, and every line arrives once, in order.
+  GrblBench bench(fast_sim());
+  const auto lines = numbered_moves(12);
+  for (const std::size_t pause_after : {std::size_t{1}, std::size_t{3}, std::size_t{8}}) {
+    CAPTURE(pause_after);
+    auto options = GrblBench::fast_options();
+    options.silence_timeout = 500ms;
+    subfeed::drivers::ProgramQueue q(4);
+    subfeed::drivers::LiveGcode source("live.nc", q);
+    const auto polls_before = bench.sim->stats().status_queries;
+    auto writer = subfeed::testing::write_slowly(q, lines, pause_after, 1500ms);
+    const auto summary =
+        subfeed::drivers::stream_grbl(*bench.port, source, options, nullptr, bench.observer);
+    q.close();
+    REQUIRE(summary);
+    CHECK(summary->lines == 13);
+    CHECK(bench.sim->stats().status_queries - polls_before >= 3); // polled through the pause
+  }
+  std::vector<std::string> expected;
+  for (int pass = 0; pass < 3; ++pass) {
+    for (const auto& l : stripped_lines("G21G90\n")) {
+      expected.push_back(l);
+    }
+    for (int i = 1; i <= 12; ++i) {
+      expected.push_back("G1X" + std::to_string(i) + "F1000");
+    }
+  }
+  CHECK(bench.sim->stats().executed == expected);
+}
+
+TEST_CASE("a stop while the program's writer pauses ends at once", "[pty]") {
+  GrblBench bench(fast_sim());
+  subfeed::drivers::ProgramQueue queue(4);
+  subfeed::drivers::LiveGcode source("live.nc", queue);
+  auto writer = subfeed::testing::write_slowly(queue, numbered_moves(6), 5, 20s);
+  auto inbox = ControlInbox::create().value();
+  std::jthread stopper([&inbox] {
+    std::this_thread::sleep_for(600ms);
+    inbox->push({ControlCommand::Kind::stop, 0});
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = subfeed::drivers::stream_grbl(*bench.port, source, GrblBench::fast_options(),
+                                                    inbox.get(), bench.observer);
+  queue.close(); // the writer learns nobody listens and ends
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::stopped);
+  CHECK(std::chrono::steady_clock::now() - start < 3s);
+  CHECK(bench.sim->stats().executed_count == 3); // G21G90 and the two moves before the pause
 }

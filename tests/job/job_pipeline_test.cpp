@@ -246,4 +246,6 @@ TEST_CASE("job pipeline: progress tells the planner's stages and solves, for the
   CHECK(p.solve >= 1);
   CHECK(p.solve <= most);
   CHECK(p.most_solves == most);
+  // Clearing tells no share of its own: the reach stage's is not carried over into it.
+  CHECK(p.stage_share < 0.0);
 }

@@ -1,10 +1,12 @@
 #pragma once
 // A queue between two threads of a pipeline with back-pressure: push() waits while the
-// queue holds `capacity` items, pop() waits while it is empty. close() ends it from either
+// queue holds `capacity` items, pop() waits while it is empty; a consumer with other duties
+// asks ready() first, which waits no longer than it is told. close() ends it from either
 // side: a producer closes when it has no more, a consumer that gives up closes so that a
 // producer blocked in push() wakes and learns nobody is listening. Memory is bounded by the
 // capacity, however long the stream.
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -40,6 +42,13 @@ public:
     items_.pop_front();
     not_full_.notify_one();
     return item;
+  }
+
+  // Whether pop() would return at once (an item is there, or the queue is closed), waiting
+  // up to `wait` for that.
+  [[nodiscard]] bool ready(std::chrono::milliseconds wait) {
+    std::unique_lock lock(mutex_);
+    return not_empty_.wait_for(lock, wait, [this] { return closed_ || !items_.empty(); });
   }
 
   void close() {

@@ -5,6 +5,7 @@
 
 #include "base/error.hpp"
 
+#include <chrono>
 #include <string>
 #include <string_view>
 
@@ -29,6 +30,9 @@ public:
   [[nodiscard]] virtual Expected<void> rewind() = 0;
   // Fills `block` with the next non-blank line; false at the end of the program.
   [[nodiscard]] virtual Expected<bool> next(FanucBlock& block) = 0;
+  // Whether next() answers without waiting on whoever writes the program, waiting up to
+  // `wait` for that (LineSource::ready). A file is always ready.
+  [[nodiscard]] virtual bool ready(std::chrono::milliseconds /*wait*/) { return true; }
 };
 
 // ISO 840 tape characters: capitals, digits, space and + - . / ( ) # * ; = % :

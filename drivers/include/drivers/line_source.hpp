@@ -7,6 +7,7 @@
 #include "base/error.hpp"
 #include "drivers/gcode_line.hpp"
 
+#include <chrono>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,10 @@ public:
   [[nodiscard]] virtual Expected<void> rewind() = 0;
   // The next line with something to send; nullopt at the end of the program.
   [[nodiscard]] virtual Expected<std::optional<SourceLine>> next() = 0;
+  // Whether next() answers without waiting on whoever writes the program, waiting up to
+  // `wait` for that: a sender serves the controller (polls, faults, stops) meanwhile instead
+  // of falling silent. A file is always ready.
+  [[nodiscard]] virtual bool ready(std::chrono::milliseconds /*wait*/) { return true; }
 };
 
 } // namespace subfeed::drivers

@@ -27,12 +27,19 @@ public:
   [[nodiscard]] Expected<ScanSummary> scan() override { return ScanSummary{}; }
   [[nodiscard]] Expected<void> rewind() override;
   [[nodiscard]] Expected<std::optional<SourceLine>> next() override;
+  // Blank and comment-only lines are taken here as they come, so that next() after a true
+  // answer never waits for the producer.
+  [[nodiscard]] bool ready(std::chrono::milliseconds wait) override;
 
 private:
+  // The next item prepared: a line to send, a blank one (text empty), or the producer's error.
+  [[nodiscard]] Expected<SourceLine> prepare(Expected<std::string> item);
+
   std::string name_;
   ProgramQueue* queue_;
   LineRules rules_;
   long line_ = 0;
+  std::optional<Expected<SourceLine>> ready_; // taken by ready(), handed on by next()
 };
 
 // For the Fanuc drip feed. scan() waits for the first line to learn whether the program
@@ -45,6 +52,7 @@ public:
   [[nodiscard]] Expected<FanucScan> scan() override;
   [[nodiscard]] Expected<void> rewind() override;
   [[nodiscard]] Expected<bool> next(FanucBlock& block) override;
+  [[nodiscard]] bool ready(std::chrono::milliseconds wait) override;
 
 private:
   [[nodiscard]] Expected<std::optional<std::string>> take();

@@ -23,6 +23,7 @@
 #include "cl/cl_pose.hpp"
 #include "geometry/cage.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/stage_share.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/triangle_tree.hpp"
 
@@ -50,7 +51,8 @@ struct GateReport {
 class MotionGate {
 public:
   [[nodiscard]] static Expected<MotionGate> build(const Cage& cage, const LimitSurface& surface,
-                                                  const GateOptions& options);
+                                                  const GateOptions& options,
+                                                  StageShare* share = nullptr);
 
   // The move from the last pose accepted to `pose`: accepted, or an error (bad_input) that
   // names the pose's CL line (when it has one), the move, where it reaches into the part and

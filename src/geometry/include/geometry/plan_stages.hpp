@@ -37,10 +37,13 @@ struct PlanTimes {
   [[nodiscard]] double total_s() const;
 };
 
-// What prepare() tells as it goes: the stage it enters, and each deformation solve.
+// What prepare() tells as it goes: the stage it enters, the share of it done so far (0..1,
+// for an ETA; not every stage tells one), and each deformation solve. All are called on the
+// thread that called prepare().
 struct PlanObserver {
   std::function<void(PlanStage)> stage;
   SolveProgress solve;
+  std::function<void(double)> share;
 };
 
 // Adds the time from construction to destruction to one figure.

@@ -7,6 +7,7 @@
 
 #include "base/error.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/stage_share.hpp"
 
 #include <Eigen/Core>
 #include <array>
@@ -47,9 +48,10 @@ struct SurfaceMesh {
                                                    double max_edge_mm = 0.0);
 
 // A face is cut at its own rate inside; a cage edge at the larger rate of its two faces, so
-// neighbours share every point along it.
+// neighbours share every point along it. `share`, when given, hears of the faces done.
 [[nodiscard]] Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
-                                                 const std::vector<int>& face_rates);
+                                                 const std::vector<int>& face_rates,
+                                                 StageShare* share = nullptr);
 // Every face at the same rate.
 [[nodiscard]] Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
                                                  int rate);

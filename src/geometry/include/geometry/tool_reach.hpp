@@ -14,6 +14,7 @@
 // A point out of reach is never cut: the planner slices only triangles whose every vertex
 // is in reach, and reports what it leaves (reach_regions.hpp).
 
+#include "geometry/stage_share.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/triangle_tree.hpp"
 
@@ -41,11 +42,10 @@ struct ReachOptions {
 // centres set on each vertex along its normal and lifted clear of `design` (the same
 // mesh's triangle tree); `axes` the tool axis the planner gives each vertex (unit), which
 // the ball withdraws along; `top_z` the mesh's highest point, mm.
-[[nodiscard]] std::vector<ReachLimit> surface_reach(const SurfaceMesh& mesh,
-                                                    const std::vector<Eigen::Vector3d>& clear_balls,
-                                                    const std::vector<Eigen::Vector3d>& axes,
-                                                    const TriangleTree& design, double top_z,
-                                                    const ReachOptions& options);
+[[nodiscard]] std::vector<ReachLimit>
+surface_reach(const SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& clear_balls,
+              const std::vector<Eigen::Vector3d>& axes, const TriangleTree& design, double top_z,
+              const ReachOptions& options, StageShare* share = nullptr);
 
 // Whether the ball centred at `centre` withdraws as above along `axis` (unit) to over
 // `top_z` (the part's highest point, mm) without coming within the margin of `design`.

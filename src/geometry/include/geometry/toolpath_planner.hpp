@@ -27,6 +27,7 @@
 // With `baseline` the planes are spaced evenly at the smallest interval instead (plain
 // iso-planar passes with the same worst-case scallop), for comparison.
 
+#include "base/bounded_queue.hpp"
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
 #include "geometry/deformation.hpp"
@@ -41,6 +42,7 @@
 #include "geometry/planning_cage.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/reach_regions.hpp"
+#include "geometry/stage_share.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/triangle_tree.hpp"
 #include "geometry/unreachable_regions.hpp"
@@ -162,12 +164,19 @@ private:
   struct PassPoint {
     Eigen::Vector3d centre, contact, normal, axis;
   };
+  // One level cut, handed from the cutting thread to the linking one in run().
+  struct CutLevel {
+    long plane = -1; // the plane's number, or -1 for a level inserted between planes
+    std::vector<std::vector<PassPoint>> passes;   // to cut now, in order
+    std::vector<std::vector<PassPoint>> inserted; // between rings: cut after them
+  };
+  static constexpr std::size_t levels_ahead = 8; // the most levels cut before they are linked
   ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate);
   // The steps of prepare(), in order.
   void place_cl_points(); // the ball centres over the mesh's vertices
   void index_triangles();
   // The clear balls, then which vertices the tool reaches and which triangles are cut.
-  void find_reach(double margin_mm);
+  void find_reach(double margin_mm, StageShare& share);
   // Prices the feed directions (--direction auto); the cheapest, maybe solved in full.
   [[nodiscard]] Expected<DirectionChoice> price_directions(const SolveProgress& progress);
   void face(double direction_deg); // the feed direction and the slicing normal
@@ -187,6 +196,10 @@ private:
   // The pieces of `pass` whose every point the ball can be withdrawn from (tool_reach.hpp).
   [[nodiscard]] std::vector<std::vector<PassPoint>> within_reach(std::vector<PassPoint> pass,
                                                                  const TriangleTree& design) const;
+  // Every level in order, sliced, cleared, given axes and split where out of reach, into `out`,
+  // which it closes at the end; it stops early when the reader closes it.
+  void cut_levels(BoundedQueue<CutLevel>& out, const std::vector<std::array<int, 3>>& cut,
+                  const TriangleTree& design, const PointGrid& triangles);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level, int depth,
             const TriangleTree& design);
@@ -204,7 +217,7 @@ private:
   void clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design);
   // A ball set on each design vertex along its normal and lifted clear of the part: the
   // places a ball can be, against which what a hollow keeps is measured.
-  void set_clear_balls(const TriangleTree& design);
+  void set_clear_balls(const TriangleTree& design, StageShare& share);
   // The gap between p and the nearest ball centred on `centres` (gridded in `balls`), or
   // `bound` where none is nearer, mm.
   [[nodiscard]] double gap_to_ball(const std::vector<Eigen::Vector3d>& centres,

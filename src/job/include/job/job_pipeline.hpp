@@ -71,6 +71,7 @@ struct JobProgress {
   // during the deformation the solve it is on and the most there may be.
   std::optional<geometry::PlanStage> stage;
   int solve = 0, most_solves = 0;
+  double stage_share = -1.0; // of that stage done, 0..1, where it tells one; else negative
 };
 
 class JobPipeline {
@@ -116,6 +117,7 @@ private:
   std::atomic<long> first_motion_line_{0};
   std::atomic<long> plane_{0}, planes_{0};
   std::atomic<int> stage_{-1}, solve_{0}, most_solves_{0};
+  std::atomic<double> stage_share_{-1.0};
   std::atomic<double> cut_planned_{0.0};
   std::mutex ledger_mutex_;
   std::deque<LedgerEntry> ledger_;
