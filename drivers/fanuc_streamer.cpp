@@ -32,6 +32,7 @@ public:
   }
 
   Expected<StreamSummary> run() {
+    SUBFEED_TRY(wait_for_program());
     SUBFEED_TRY_ASSIGN(const FanucScan scan, program_.scan());
     for (const auto& b : options_.restart_blocks) { // before anything is on the tape
       SUBFEED_TRY(check_tape_block(b, {program_.name(), 0, "resume"}));
@@ -69,9 +70,7 @@ private:
     bool restored = !options_.from_line;
     FanucBlock block;
     while (true) {
-      while (!program_.ready(0ms)) { // the program's writer is still at work
-        SUBFEED_TRY(service(20ms));  // a stop or the control's DC3/DC1 is heard meanwhile
-      }
+      SUBFEED_TRY(wait_for_program());
       SUBFEED_TRY_ASSIGN(const bool more, program_.next(block));
       if (!more) {
         if (!restored) {
@@ -167,10 +166,20 @@ private:
     return service(20ms);
   }
 
+  // A program still being written may keep its next block a while (its first: the whole
+  // plan's preparation). The control and the inbox are served meanwhile: a stop is taken at
+  // once, and a DC3 or DC1 is heard.
+  Expected<void> wait_for_program() {
+    while (!program_.ready(0ms)) {
+      SUBFEED_TRY(service(20ms));
+    }
+    return {};
+  }
+
+  // A DC1 already heard (while waiting for the program) is the request.
   Expected<void> wait_for_request() {
     observer_.phase("waiting for the control to request the tape (DC1)");
     const auto deadline = Clock::now() + options_.request_timeout;
-    requested_ = false;
     while (!requested_) {
       if (Clock::now() > deadline) {
         return fail(ErrorCode::machine_fault,

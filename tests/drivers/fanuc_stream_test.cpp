@@ -341,3 +341,43 @@ TEST_CASE("DNC: a stop while the program's writer pauses ends at once", "[pty]")
   CHECK(result.error().code == ErrorCode::stopped);
   CHECK(std::chrono::steady_clock::now() - start < 3s);
 }
+
+TEST_CASE("DNC: a stop before the program's first block is written ends at once", "[pty]") {
+  // A live program's first block comes after the whole plan's preparation.
+  FanucBench bench(fast_control());
+  subfeed::drivers::ProgramQueue queue(4);
+  subfeed::drivers::LiveBlocks program("live.nc", queue);
+  auto writer = subfeed::testing::write_slowly(queue, blocks_of(moves(6)), 0, 20s);
+  auto inbox = subfeed::drivers::ControlInbox::create().value();
+  std::jthread stopper([&inbox] {
+    std::this_thread::sleep_for(500ms);
+    inbox->push({subfeed::drivers::ControlCommand::Kind::stop, 0});
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = subfeed::drivers::stream_fanuc(*bench.port, program, bench.options,
+                                                     inbox.get(), bench.observer);
+  queue.close();
+  REQUIRE_FALSE(result);
+  CHECK(result.error().code == ErrorCode::stopped);
+  CHECK(std::chrono::steady_clock::now() - start < 3s);
+  CHECK(bench.sim->stats().blocks_received == 0);
+}
+
+TEST_CASE("DNC: a tape request heard while the program is still coming is kept", "[pty]") {
+  // The operator starts the control's tape read while subfeed waits for the plan's first
+  // block: that DC1 is the request, not lost to a wait for another one.
+  auto o = fast_control();
+  o.request_tape = true; // DC1 as the sender connects, before any block is there
+  FanucBench bench(o);
+  bench.options.wait_for_request = true;
+  bench.options.request_timeout = 2000ms;
+  subfeed::drivers::ProgramQueue queue(4);
+  subfeed::drivers::LiveBlocks program("live.nc", queue);
+  const auto blocks = blocks_of(moves(6));
+  auto writer = subfeed::testing::write_slowly(queue, blocks, 0, 2500ms); // past the timeout
+  const auto result =
+      subfeed::drivers::stream_fanuc(*bench.port, program, bench.options, nullptr, bench.observer);
+  REQUIRE(result);
+  std::this_thread::sleep_for(300ms);
+  CHECK(bench.sim->stats().executed == blocks);
+}
