@@ -324,43 +324,30 @@ TEST_CASE("DNC: a port that accepts nothing (CTS held low) is reported", "[pty]"
 }
 
 TEST_CASE("DNC: a stop while the program's writer pauses ends at once", "[pty]") {
-  FanucBench bench(fast_control());
-  subfeed::drivers::ProgramQueue queue(4);
-  subfeed::drivers::LiveBlocks program("live.nc", queue);
-  auto writer = subfeed::testing::write_slowly(queue, blocks_of(moves(6)), 4, 20s);
-  auto inbox = subfeed::drivers::ControlInbox::create().value();
-  std::jthread stopper([&inbox] {
-    std::this_thread::sleep_for(800ms);
-    inbox->push({subfeed::drivers::ControlCommand::Kind::stop, 0});
-  });
-  const auto start = std::chrono::steady_clock::now();
-  const auto result = subfeed::drivers::stream_fanuc(*bench.port, program, bench.options,
-                                                     inbox.get(), bench.observer);
-  queue.close();
-  REQUIRE_FALSE(result);
-  CHECK(result.error().code == ErrorCode::stopped);
-  CHECK(std::chrono::steady_clock::now() - start < 3s);
-}
-
-TEST_CASE("DNC: a stop before the program's first block is written ends at once", "[pty]") {
-  // A live program's first block comes after the whole plan's preparation.
-  FanucBench bench(fast_control());
-  subfeed::drivers::ProgramQueue queue(4);
-  subfeed::drivers::LiveBlocks program("live.nc", queue);
-  auto writer = subfeed::testing::write_slowly(queue, blocks_of(moves(6)), 0, 20s);
-  auto inbox = subfeed::drivers::ControlInbox::create().value();
-  std::jthread stopper([&inbox] {
-    std::this_thread::sleep_for(500ms);
-    inbox->push({subfeed::drivers::ControlCommand::Kind::stop, 0});
-  });
-  const auto start = std::chrono::steady_clock::now();
-  const auto result = subfeed::drivers::stream_fanuc(*bench.port, program, bench.options,
-                                                     inbox.get(), bench.observer);
-  queue.close();
-  REQUIRE_FALSE(result);
-  CHECK(result.error().code == ErrorCode::stopped);
-  CHECK(std::chrono::steady_clock::now() - start < 3s);
-  CHECK(bench.sim->stats().blocks_received == 0);
+  // Paused mid-program, and before its first block (which comes after the whole plan's
+  // preparation).
+  for (const std::size_t pause_after : {std::size_t{4}, std::size_t{0}}) {
+    CAPTURE(pause_after);
+    FanucBench bench(fast_control());
+    subfeed::drivers::ProgramQueue queue(4);
+    subfeed::drivers::LiveBlocks program("live.nc", queue);
+    auto writer = subfeed::testing::write_slowly(queue, blocks_of(moves(6)), pause_after, 20s);
+    auto inbox = subfeed::drivers::ControlInbox::create().value();
+    std::jthread stopper([&inbox] {
+      std::this_thread::sleep_for(800ms);
+      inbox->push({subfeed::drivers::ControlCommand::Kind::stop, 0});
+    });
+    const auto start = std::chrono::steady_clock::now();
+    const auto result = subfeed::drivers::stream_fanuc(*bench.port, program, bench.options,
+                                                       inbox.get(), bench.observer);
+    queue.close();
+    REQUIRE_FALSE(result);
+    CHECK(result.error().code == ErrorCode::stopped);
+    CHECK(std::chrono::steady_clock::now() - start < 3s);
+    if (pause_after == 0) {
+      CHECK(bench.sim->stats().blocks_received == 0);
+    }
+  }
 }
 
 TEST_CASE("DNC: a tape request heard while the program is still coming is kept", "[pty]") {
