@@ -91,9 +91,14 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          "to {:.3f} of the need{}",
                          centres, s.solves, s.worst_spacing_ratio, inserted));
   } else if (!o.plan.baseline) {
-    log.info(fmt::format("  deformation: solve {} of {} kept (the shortest path), pass spacing up "
-                         "to {:.3f} of the need{}",
-                         s.chosen_solve, s.solves, s.worst_spacing_ratio, inserted));
+    const std::string coarse =
+        s.solve_vertices < s.mesh_vertices
+            ? fmt::format(" (solved on a coarse mesh of {} vertices, measured on the fine one)",
+                          s.solve_vertices)
+            : std::string();
+    log.info(fmt::format("  deformation: solve {} of {} kept (the shortest path){}, pass spacing "
+                         "up to {:.3f} of the need{}",
+                         s.chosen_solve, s.solves, coarse, s.worst_spacing_ratio, inserted));
   }
   if (!s.direction_prices.empty()) {
     std::string prices;

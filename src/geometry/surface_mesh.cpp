@@ -81,18 +81,33 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
                       std::vector<int>(static_cast<std::size_t>(surface.face_count()), rate));
 }
 
-Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
-                                   const std::vector<int>& face_rates, StageShare* share) {
-  SurfaceMesh mesh;
+std::vector<std::vector<int>> edge_rates_per_face(const Cage& cage, const LimitSurface& surface,
+                                                  const std::vector<int>& face_rates) {
   std::map<std::pair<long, long>, int> edge_rate;
+  const auto edge_key = [](long a, long b) { return std::pair{std::min(a, b), std::max(a, b)}; };
   for (int f = 0; f < surface.face_count(); ++f) {
     const auto loop = cage.face(f);
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const long a = loop[i], b = loop[(i + 1) % loop.size()];
-      auto& r = edge_rate[{std::min(a, b), std::max(a, b)}];
+      auto& r = edge_rate[edge_key(loop[i], loop[(i + 1) % loop.size()])];
       r = std::max(r, face_rates[static_cast<std::size_t>(f)]);
     }
   }
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(surface.face_count()));
+  for (int f = 0; f < surface.face_count(); ++f) {
+    const auto loop = cage.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      out[static_cast<std::size_t>(f)].push_back(
+          edge_rate[edge_key(loop[i], loop[(i + 1) % loop.size()])]);
+    }
+  }
+  return out;
+}
+
+Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface,
+                                   const std::vector<int>& face_rates, StageShare* share) {
+  SurfaceMesh mesh;
+  mesh.face_rates = face_rates;
+  const auto edge_rates = edge_rates_per_face(cage, surface, face_rates);
   // Points on a cage edge or corner are shared with the neighbouring faces: keyed by the
   // cage topology (Bfr lists a face's boundary points first, corner by corner, then the
   // edge's inner points), not by position, since two faces' approximations of the same
@@ -100,6 +115,7 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
   std::map<std::array<long, 3>, std::vector<int>> shared;
   const auto faces = static_cast<std::size_t>(surface.face_count());
   for (int f = 0; f < surface.face_count(); ++f) {
+    mesh.face_points_begin.push_back(static_cast<int>(mesh.face_points.size()));
     if (share != nullptr) {
       share->tell(0, static_cast<std::size_t>(f), faces);
     }
@@ -108,11 +124,9 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
     }
     const auto loop = cage.face(f);
     const auto n = loop.size();
-    std::vector<int> rates(n);
+    const auto& rates = edge_rates[static_cast<std::size_t>(f)];
     std::vector<long> edge_of, step_of; // per boundary point: its edge and index along it
     for (std::size_t e = 0; e < n; ++e) {
-      const long a = loop[e], b = loop[(e + 1) % n];
-      rates[e] = edge_rate[{std::min(a, b), std::max(a, b)}];
       mesh.rate = std::max(mesh.rate, rates[e]);
       for (int j = 0; j < rates[e]; ++j) {
         edge_of.push_back(static_cast<long>(e));
@@ -148,12 +162,14 @@ Expected<SurfaceMesh> mesh_surface(const Cage& cage, const LimitSurface& surface
       mesh.normals.push_back(s.normal);
       mesh.curvature.push_back(curvature_matrix(s));
     }
+    mesh.face_points.insert(mesh.face_points.end(), index.begin(), index.end());
     for (const auto& t : tess.triangles) {
       mesh.triangles.push_back({index[static_cast<std::size_t>(t[0])],
                                 index[static_cast<std::size_t>(t[1])],
                                 index[static_cast<std::size_t>(t[2])]});
     }
   }
+  mesh.face_points_begin.push_back(static_cast<int>(mesh.face_points.size()));
   if (mesh.triangles.empty()) {
     return fail(ErrorCode::bad_input, "the cage has no limit surface to machine");
   }

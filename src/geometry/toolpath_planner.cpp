@@ -1,6 +1,7 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include "geometry/closest_point.hpp"
+#include "geometry/coarse_mesh.hpp"
 #include "geometry/concentric_field.hpp"
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
@@ -36,6 +37,8 @@ constexpr double ring_preference = 0.02;
 // passes inserted only past 2 % (the scallop there may exceed the target by about 4 %).
 // At 1 %, 3 % more cutting on the dome, and the same worst scallop.
 constexpr double ring_allowance = 0.02;
+// Solves measured on the fine mesh after those on the coarse one (deform_on_coarse).
+constexpr int fine_rounds = 8;
 
 cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::MoveKind kind,
                    double feed) {
@@ -110,7 +113,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
                                         planner.s_, reached_mask(planner.tool_reach_));
   {
     const auto clock = enter(PlanStage::deformation);
-    SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve));
+    SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve,
+                               finer ? finer->cage : cage, finer ? finer->surface : surface));
   }
   {
     const auto clock = enter(PlanStage::clearing);
@@ -158,9 +162,11 @@ void ToolpathPlanner::face(double direction_deg) {
 }
 
 Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, DirectionChoice choice,
-                                       const SolveProgress& progress) {
+                                       const SolveProgress& progress, const Cage& cage,
+                                       const LimitSurface& surface) {
   const auto& o = options_;
   const auto& m = mesh_;
+  summary_.solve_vertices = m.vertex_count();
   const double r = o.ball_radius;
   const double widest = std::ranges::max(intervals.cl_spacing);
   const double insertion_margin = o.insertion_margin.value_or(widest);
@@ -194,6 +200,9 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
   }
   if (choice.solved_in_full) {
     deformation_ = std::move(choice.deformation);
+  } else if (m.vertex_count() >= o.coarse_solve_from) {
+    SUBFEED_TRY_ASSIGN(deformation_,
+                       deform_coarse(intervals, cage, surface, insertion_margin, progress));
   } else {
     SUBFEED_TRY_ASSIGN(deformation_,
                        deform_cl_mesh(cl_points_, path_points(), m.triangles, s_, intervals,
@@ -209,6 +218,41 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
     }
   }
   return {};
+}
+
+Expected<Deformation> ToolpathPlanner::deform_coarse(const PassIntervals& intervals,
+                                                     const Cage& cage, const LimitSurface& surface,
+                                                     double insertion_margin,
+                                                     const SolveProgress& progress) {
+  const auto& o = options_;
+  const double r = o.ball_radius;
+  SUBFEED_TRY_ASSIGN(const auto coarse, coarse_mesh(cage, surface, mesh_, o.coarse_factor));
+  const auto& cm = coarse.mesh;
+  std::vector<Eigen::Vector3d> cl;
+  cl.reserve(cm.points.size());
+  for (std::size_t v = 0; v < cm.points.size(); ++v) {
+    cl.push_back(cm.points[v] + r * cm.normals[v]);
+  }
+  auto coarse_intervals =
+      pass_intervals(cm, r, o.scallop, s_, coarse.from_fine(intervals.in_reach));
+  // The same reference: planes as close as the finest need anywhere on the fine mesh.
+  coarse_intervals.min_interval = intervals.min_interval;
+  coarse_intervals.max_interval = intervals.max_interval;
+  const auto coarse_need = [&](const std::vector<Eigen::Vector3d>& across) {
+    return cl_spacing_across(cm, r, o.scallop, across, coarse_intervals.cl_spacing);
+  };
+  const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
+    return cl_spacing_across(mesh_, r, o.scallop, across, intervals.cl_spacing);
+  };
+  summary_.solve_vertices = cm.vertex_count();
+  return deform_on_coarse(
+      {cl, o.fixed_axis ? cl : cm.points, cm.triangles, coarse_intervals, coarse_need}, coarse,
+      {cl_points_, path_points(), mesh_.triangles, intervals, need}, s_,
+      {.coarse_rounds = o.refine_iterations,
+       .fine_rounds = fine_rounds,
+       .insertion_margin = insertion_margin,
+       .allowance = o.spacing_allowance,
+       .on_solve = progress});
 }
 
 void ToolpathPlanner::summarise(const PassIntervals& intervals) {

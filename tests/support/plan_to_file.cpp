@@ -25,4 +25,12 @@ PlannedPath plan_and_verify(const geometry::Cage& cage, const geometry::LimitSur
   return {planner->summary(), *report};
 }
 
+geometry::PlanSummary plan_only(const geometry::Cage& cage, const geometry::LimitSurface& surface,
+                                const geometry::PlanOptions& plan) {
+  auto planner = geometry::ToolpathPlanner::prepare(cage, surface, plan);
+  REQUIRE(planner);
+  REQUIRE(planner->run([](const cl::ClPose&) -> Expected<void> { return {}; }));
+  return planner->summary();
+}
+
 } // namespace subfeed::testing

@@ -21,4 +21,9 @@ struct PlannedPath {
                                           const geometry::VerifyOptions& verify,
                                           const std::filesystem::path& file);
 
+// The plan's summary alone, nothing written (REQUIRE as above).
+[[nodiscard]] geometry::PlanSummary plan_only(const geometry::Cage& cage,
+                                              const geometry::LimitSurface& surface,
+                                              const geometry::PlanOptions& plan);
+
 } // namespace subfeed::testing

@@ -16,6 +16,7 @@
 // formula. The cheapest solve is kept.
 
 #include "base/error.hpp"
+#include "geometry/coarse_mesh.hpp"
 #include "geometry/pass_insertion.hpp"
 #include "geometry/pass_intervals.hpp"
 
@@ -66,6 +67,34 @@ struct Deformation {
     const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& s,
     const PassIntervals& intervals, int max_iterations, double insertion_margin, double allowance,
     const SolveProgress& on_solve = {}, const NeedAcross& need_across = {});
+
+// One mesh's part in a deformation: its CL points, where the tool's path runs over them,
+// its triangles, the spacing each vertex needs, and the need across bending passes.
+struct DeformedMesh {
+  const std::vector<Eigen::Vector3d>& cl_points;
+  const std::vector<Eigen::Vector3d>& path_points;
+  const std::vector<std::array<int, 3>>& triangles;
+  const PassIntervals& intervals;
+  NeedAcross need_across;
+};
+
+struct DeformSettings {
+  int coarse_rounds = 60; // solves measured on the coarse mesh
+  int fine_rounds = 8;    // then solves measured on the fine one
+  double insertion_margin = 0.0;
+  double allowance = 0.01;
+  SolveProgress on_solve;
+};
+
+// The deformation solved on `map`'s coarse mesh and carried to the fine one: first solves
+// measured and priced on the coarse mesh, as deform_cl_mesh does; then, from the cheapest,
+// solves measured and priced on the fine mesh, eta raised at the coarse corners of its
+// triangles still too wide. The solve kept is the cheapest of those, on the fine mesh; its
+// passes inserted are those the fine mesh needs. Both meshes must share the reference
+// (intervals.min_interval).
+[[nodiscard]] Expected<Deformation>
+deform_on_coarse(const DeformedMesh& coarse, const CoarseMesh& map, const DeformedMesh& fine,
+                 const Eigen::Vector3d& s, const DeformSettings& settings);
 
 // The constant-interval iso-planar baseline: xi' = xi, spaced by the smallest interval, with
 // nothing inserted.

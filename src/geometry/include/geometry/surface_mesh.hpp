@@ -24,6 +24,12 @@ struct SurfaceMesh {
   std::vector<Eigen::Matrix3d> curvature;
   std::vector<std::array<int, 3>> triangles; // counter-clockwise seen from the tool
   int rate = 0;                              // most segments along any cage face edge
+  // Where each cage face's tessellation points landed, in the order LimitSurface::tessellate
+  // lists them at `face_rates` and edge_rates_per_face: face f's are
+  // face_points[face_points_begin[f]] up to face_points[face_points_begin[f + 1]].
+  std::vector<int> face_rates;
+  std::vector<int> face_points_begin;
+  std::vector<int> face_points;
 
   [[nodiscard]] int vertex_count() const { return static_cast<int>(points.size()); }
   [[nodiscard]] int triangle_count() const { return static_cast<int>(triangles.size()); }
@@ -46,6 +52,12 @@ struct SurfaceMesh {
 [[nodiscard]] std::vector<int> rates_for_tolerance(const LimitSurface& surface,
                                                    double chord_tolerance, int max_rate = 128,
                                                    double max_edge_mm = 0.0);
+
+// Per cage face, the segments along each of its edges (from its vertex i to i + 1): the
+// larger rate of the two faces that share the edge.
+[[nodiscard]] std::vector<std::vector<int>> edge_rates_per_face(const Cage& cage,
+                                                                const LimitSurface& surface,
+                                                                const std::vector<int>& face_rates);
 
 // A face is cut at its own rate inside; a cage edge at the larger rate of its two faces, so
 // neighbours share every point along it. `share`, when given, hears of the faces done.
