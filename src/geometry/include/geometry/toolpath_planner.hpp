@@ -212,7 +212,7 @@ private:
   // Every level in order, sliced, cleared, given axes and split where out of reach, into `out`,
   // which it closes at the end; it stops early when the reader closes it.
   void cut_levels(BoundedQueue<CutLevel>& out, const std::vector<std::array<int, 3>>& cut,
-                  const TriangleTree& design, const PointGrid& triangles);
+                  const TriangleTree& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level, int depth,
             const TriangleTree& design);
@@ -245,6 +245,7 @@ private:
                                             const Eigen::Vector3d& normal,
                                             const PointGrid& triangles) const;
   void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
+  void smooth_axes(std::vector<PassPoint>& pass) const; // along the pass, within the tilt
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
                                          const TriangleTree& design);
@@ -265,7 +266,8 @@ private:
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
   std::vector<double> reach_; // each triangle's farthest vertex from its centroid, mm
-  double longest_edge_ = 0.0; // of the design mesh, mm
+  std::vector<Eigen::Vector3d> vertex_axes_; // the tool axis at each mesh vertex (+Z: fixed)
+  double longest_edge_ = 0.0;                // of the design mesh, mm
   std::vector<LiftedPoint> lifted_;
   std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm
   std::vector<ReachLimit> tool_reach_;       // per design vertex
