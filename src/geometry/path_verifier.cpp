@@ -3,6 +3,7 @@
 #include "geometry/closest_point.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/scallop_meter.hpp"
+#include "geometry/split_work.hpp"
 #include "geometry/step_over.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/uncut_regions.hpp"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
+#include <iterator>
 #include <numbers>
 #include <unordered_map>
 
@@ -292,32 +294,83 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
                   radius_across(s, m.near), h.height});
 }
 
-// Every face's samples, `spacing` apart, measured.
-std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps& sweeps,
-                                      Measurer& m, double spacing, VerifyReport& report) {
+// One face's samples, `spacing` apart, measured into its own report and lists.
+struct FaceMeasured {
+  VerifyReport report;
   std::vector<Measured> kept;
   Uncut uncut;
-  std::vector<Capsule> near_moves;
-  for (int f = 0; f < surface.face_count(); ++f) {
-    if (!surface.has_patch(f)) {
-      continue;
+};
+
+FaceMeasured measure_face(const LimitSurface& surface, const Sweeps& sweeps, Measurer& m,
+                          std::vector<Capsule>& near_moves, double spacing, int f) {
+  FaceMeasured out;
+  const auto centre = surface.evaluate_regular(f, 0.5, 0.5);
+  const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
+  const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
+  const auto tess = surface.tessellate(f, rate);
+  std::vector<std::optional<LimitSample>> evaluated;
+  for (const auto& uv : tess.uv) {
+    auto e = surface.evaluate_regular(f, uv.x(), uv.y());
+    evaluated.push_back(e ? std::optional<LimitSample>(*e) : std::nullopt);
+  }
+  const auto share = area_shares(tess, evaluated);
+  for (std::size_t k = 0; k < tess.uv.size(); ++k) {
+    if (evaluated[k]) {
+      measure_sample(sweeps, m, near_moves, *evaluated[k], {f, tess.uv[k].x(), tess.uv[k].y(), 0.0},
+                     share[k], out.report, out.kept, out.uncut);
     }
-    const auto centre = surface.evaluate_regular(f, 0.5, 0.5);
-    const double extent = centre ? std::max(centre->du.norm(), centre->dv.norm()) : 1.0;
-    const int rate = std::clamp(static_cast<int>(std::ceil(extent / spacing)), 2, 256);
-    const auto tess = surface.tessellate(f, rate);
-    std::vector<std::optional<LimitSample>> evaluated;
-    for (const auto& uv : tess.uv) {
-      auto e = surface.evaluate_regular(f, uv.x(), uv.y());
-      evaluated.push_back(e ? std::optional<LimitSample>(*e) : std::nullopt);
-    }
-    const auto share = area_shares(tess, evaluated);
-    for (std::size_t k = 0; k < tess.uv.size(); ++k) {
-      if (evaluated[k]) {
-        measure_sample(sweeps, m, near_moves, *evaluated[k],
-                       {f, tess.uv[k].x(), tess.uv[k].y(), 0.0}, share[k], report, kept, uncut);
-      }
-    }
+  }
+  return out;
+}
+
+void add_touches(const MoveTouches& from, MoveTouches& to) {
+  to.samples += from.samples;
+  if (from.deepest > to.deepest) {
+    to.deepest = from.deepest;
+    to.at = from.at;
+  }
+}
+
+// A face's counts added to the whole's, in face order: the worst found first stays, as
+// measuring face after face on one thread would keep it.
+void add_face(FaceMeasured& face, VerifyReport& report, std::vector<Measured>& kept, Uncut& uncut) {
+  const auto& r = face.report;
+  report.samples += r.samples;
+  report.out_of_reach_samples += r.out_of_reach_samples;
+  report.out_of_reach_area += r.out_of_reach_area;
+  report.uncut_samples += r.uncut_samples;
+  report.gouges += r.gouges;
+  if (r.max_gouge > report.max_gouge) {
+    report.max_gouge = r.max_gouge;
+    report.gouge_at = r.gouge_at;
+  }
+  add_touches(r.links, report.links);
+  add_touches(r.rapids, report.rapids);
+  std::ranges::move(face.kept, std::back_inserter(kept));
+  std::ranges::move(face.uncut.points, std::back_inserter(uncut.points));
+  std::ranges::move(face.uncut.areas, std::back_inserter(uncut.areas));
+}
+
+// Every face's samples, `spacing` apart, measured, the faces shared between the cores.
+std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps& sweeps,
+                                      const Measurer& m, double spacing, VerifyReport& report) {
+  std::vector<FaceMeasured> faces(static_cast<std::size_t>(surface.face_count()));
+  split_work(
+      faces.size(),
+      [&](std::size_t begin, std::size_t end) {
+        Measurer own{m.surface, m.grid, m.r, {}};
+        std::vector<Capsule> near_moves;
+        for (std::size_t f = begin; f < end; ++f) {
+          if (surface.has_patch(static_cast<int>(f))) {
+            faces[f] = measure_face(surface, sweeps, own, near_moves, spacing, static_cast<int>(f));
+          }
+        }
+      },
+      1);
+  std::vector<Measured> kept;
+  Uncut uncut;
+  for (auto& face : faces) {
+    add_face(face, report, kept, uncut);
   }
   // Neighbouring samples lie about `spacing` apart (a face's rate follows its size at its
   // centre, so a little more where it stretches): three spacings join a region, not two.
@@ -327,7 +380,7 @@ std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps&
 
 // Mean and 99th percentile of the samples as first measured; then the worst, refined where
 // a sample came within half of the coarse worst (the cusp may lie between samples).
-void summarise_heights(Measurer& m, double spacing, std::vector<Measured>& kept,
+void summarise_heights(const Measurer& m, double spacing, std::vector<Measured>& kept,
                        VerifyReport& report) {
   std::vector<double> sorted;
   double sum = 0.0;
@@ -340,15 +393,24 @@ void summarise_heights(Measurer& m, double spacing, std::vector<Measured>& kept,
   report.mean_scallop = kept.empty() ? 0.0 : sum / static_cast<double>(kept.size());
   report.p99_scallop = sorted.empty() ? 0.0 : sorted[sorted.size() * 99 / 100];
   report.max_scallop = 0.0;
-  for (auto& k : kept) {
-    if (k.sample.height >= 0.5 * coarse_max) {
-      double gouge = 0.0;
-      k.height = refine(m, k.sample, spacing, gouge);
-      if (k.height > report.max_scallop) {
-        report.max_scallop = k.height;
-        report.max_at = k.point;
+  // Refined on both cores, then the worst taken in order, as one thread would.
+  const auto refined = [&](const Measured& k) { return k.sample.height >= 0.5 * coarse_max; };
+  std::vector<double> gouges(kept.size(), 0.0);
+  split_work(kept.size(), [&](std::size_t begin, std::size_t end) {
+    Measurer own{m.surface, m.grid, m.r, {}};
+    for (std::size_t i = begin; i < end; ++i) {
+      if (refined(kept[i])) {
+        kept[i].height = refine(own, kept[i].sample, spacing, gouges[i]);
       }
-      report.max_gouge = std::max(report.max_gouge, gouge);
+    }
+  });
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (refined(kept[i])) {
+      if (kept[i].height > report.max_scallop) {
+        report.max_scallop = kept[i].height;
+        report.max_at = kept[i].point;
+      }
+      report.max_gouge = std::max(report.max_gouge, gouges[i]);
     }
   }
 }
