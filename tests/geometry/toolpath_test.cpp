@@ -326,9 +326,10 @@ TEST_CASE("a coarse plan on a bowl: scallop within 5 %, no gouge past the gate's
 }
 
 TEST_CASE("the bowl with its deformation solved on a coarse mesh: scallop as the fine solve's, no "
-          "gouge past the gate's bound, within 8 % of its cutting") {
+          "gouge past the gate's bound, within 8 % of its cutting",
+          "[slow]") {
   TempDir dir;
-  for (const double direction : {0.0, 30.0, 90.0}) {
+  for (const double direction : {0.0, 30.0}) {
     auto options = bowl_options(coarse_tolerance);
     options.direction_deg = direction;
     const auto fine = plan_bowl(dir, options, "fine.cl", coarse_spacing);
@@ -341,8 +342,8 @@ TEST_CASE("the bowl with its deformation solved on a coarse mesh: scallop as the
                   << fine.report.max_scallop);
     CHECK(coarse.plan.solve_vertices * 2 < coarse.plan.mesh_vertices);
     CHECK(fine.plan.solve_vertices == fine.plan.mesh_vertices);
-    // At this tolerance the fine solve itself leaves up to 6.5 % over H along 30 and 90
-    // degrees (at 1 um both keep within 5 %: the sample parts' tests).
+    // At this tolerance the fine solve itself leaves up to 6.5 % over H along 30 degrees
+    // (at 1 um both keep within 5 %: the sample parts' tests).
     CHECK(coarse.report.max_scallop <= std::max(1.05 * 0.03, 1.01 * fine.report.max_scallop));
     CHECK(coarse.report.max_scallop >= 0.5 * 0.03);
     CHECK(coarse.report.max_gouge <= 2.5 * coarse_tolerance);
