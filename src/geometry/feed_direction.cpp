@@ -23,6 +23,16 @@ Expected<Deformation> deform_along(const SurfaceMesh& mesh,
   const Eigen::Vector3d s = slicing_normal_for(direction_deg);
   const auto intervals = pass_intervals(mesh, p.ball_radius, p.scallop, s, p.in_reach);
   const double margin = p.insertion_margin.value_or(std::ranges::max(intervals.cl_spacing));
+  if (p.coarse != nullptr) {
+    // The cheapest of a candidate's few coarse solves, measured on the fine mesh once;
+    // a full solve takes the fine rounds too.
+    return p.coarse->solve(mesh, cl_points, path_points, s, intervals,
+                           {.coarse_rounds = solves,
+                            .fine_rounds = solves < p.full_solves ? 1 : p.fine_rounds,
+                            .insertion_margin = margin,
+                            .allowance = p.spacing_allowance,
+                            .on_solve = on_solve});
+  }
   const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
     return cl_spacing_across(mesh, p.ball_radius, p.scallop, across, intervals.cl_spacing);
   };

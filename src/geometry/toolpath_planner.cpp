@@ -1,7 +1,7 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include "geometry/closest_point.hpp"
-#include "geometry/coarse_mesh.hpp"
+#include "geometry/coarse_deformation.hpp"
 #include "geometry/concentric_field.hpp"
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
@@ -103,6 +103,14 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     StageShare share(observer.share, options.fixed_axis ? 2 : 3); // balls, axes, reach
     planner.find_reach(gate_tolerance, share);
   }
+  if (planner.mesh_.vertex_count() >= options.coarse_solve_from) {
+    const StageClock clock(times[PlanStage::deformation]);
+    SUBFEED_TRY_ASSIGN(auto map,
+                       coarse_mesh(finer ? finer->cage : cage, finer ? finer->surface : surface,
+                                   planner.mesh_, options.coarse_factor));
+    planner.coarse_ = std::make_unique<CoarseSolver>(std::move(map), options.ball_radius,
+                                                     options.scallop, options.fixed_axis);
+  }
   DirectionChoice choice; // may hold the chosen direction's deformation, solved in full
   if (options.choose_direction) {
     const auto clock = enter(PlanStage::directions);
@@ -113,8 +121,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
                                         planner.s_, reached_mask(planner.tool_reach_));
   {
     const auto clock = enter(PlanStage::deformation);
-    SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve,
-                               finer ? finer->cage : cage, finer ? finer->surface : surface));
+    SUBFEED_TRY(planner.deform(intervals, std::move(choice), observer.solve));
   }
   {
     const auto clock = enter(PlanStage::clearing);
@@ -147,7 +154,9 @@ Expected<DirectionChoice> ToolpathPlanner::price_directions(const SolveProgress&
                                  .full_solves = o.refine_iterations,
                                  .spacing_allowance = o.spacing_allowance,
                                  .insertion_margin = o.insertion_margin,
-                                 .in_reach = reached_mask(tool_reach_)};
+                                 .in_reach = reached_mask(tool_reach_),
+                                 .coarse = coarse_.get(),
+                                 .fine_rounds = fine_rounds};
   SUBFEED_TRY_ASSIGN(auto choice,
                      choose_feed_direction(mesh_, cl_points_, path_points(), pricing, progress));
   summary_.direction_prices = choice.prices;
@@ -162,8 +171,7 @@ void ToolpathPlanner::face(double direction_deg) {
 }
 
 Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, DirectionChoice choice,
-                                       const SolveProgress& progress, const Cage& cage,
-                                       const LimitSurface& surface) {
+                                       const SolveProgress& progress) {
   const auto& o = options_;
   const auto& m = mesh_;
   summary_.solve_vertices = m.vertex_count();
@@ -199,10 +207,16 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
     return {};
   }
   if (choice.solved_in_full) {
+    summary_.solve_vertices = coarse_ ? coarse_->vertex_count() : m.vertex_count();
     deformation_ = std::move(choice.deformation);
-  } else if (m.vertex_count() >= o.coarse_solve_from) {
-    SUBFEED_TRY_ASSIGN(deformation_,
-                       deform_coarse(intervals, cage, surface, insertion_margin, progress));
+  } else if (coarse_) {
+    summary_.solve_vertices = coarse_->vertex_count();
+    SUBFEED_TRY_ASSIGN(deformation_, coarse_->solve(m, cl_points_, path_points(), s_, intervals,
+                                                    {.coarse_rounds = o.refine_iterations,
+                                                     .fine_rounds = fine_rounds,
+                                                     .insertion_margin = insertion_margin,
+                                                     .allowance = o.spacing_allowance,
+                                                     .on_solve = progress}));
   } else {
     SUBFEED_TRY_ASSIGN(deformation_,
                        deform_cl_mesh(cl_points_, path_points(), m.triangles, s_, intervals,
@@ -218,41 +232,6 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
     }
   }
   return {};
-}
-
-Expected<Deformation> ToolpathPlanner::deform_coarse(const PassIntervals& intervals,
-                                                     const Cage& cage, const LimitSurface& surface,
-                                                     double insertion_margin,
-                                                     const SolveProgress& progress) {
-  const auto& o = options_;
-  const double r = o.ball_radius;
-  SUBFEED_TRY_ASSIGN(const auto coarse, coarse_mesh(cage, surface, mesh_, o.coarse_factor));
-  const auto& cm = coarse.mesh;
-  std::vector<Eigen::Vector3d> cl;
-  cl.reserve(cm.points.size());
-  for (std::size_t v = 0; v < cm.points.size(); ++v) {
-    cl.push_back(cm.points[v] + r * cm.normals[v]);
-  }
-  auto coarse_intervals =
-      pass_intervals(cm, r, o.scallop, s_, coarse.from_fine(intervals.in_reach));
-  // The same reference: planes as close as the finest need anywhere on the fine mesh.
-  coarse_intervals.min_interval = intervals.min_interval;
-  coarse_intervals.max_interval = intervals.max_interval;
-  const auto coarse_need = [&](const std::vector<Eigen::Vector3d>& across) {
-    return cl_spacing_across(cm, r, o.scallop, across, coarse_intervals.cl_spacing);
-  };
-  const auto need = [&](const std::vector<Eigen::Vector3d>& across) {
-    return cl_spacing_across(mesh_, r, o.scallop, across, intervals.cl_spacing);
-  };
-  summary_.solve_vertices = cm.vertex_count();
-  return deform_on_coarse(
-      {cl, o.fixed_axis ? cl : cm.points, cm.triangles, coarse_intervals, coarse_need}, coarse,
-      {cl_points_, path_points(), mesh_.triangles, intervals, need}, s_,
-      {.coarse_rounds = o.refine_iterations,
-       .fine_rounds = fine_rounds,
-       .insertion_margin = insertion_margin,
-       .allowance = o.spacing_allowance,
-       .on_solve = progress});
 }
 
 void ToolpathPlanner::summarise(const PassIntervals& intervals) {

@@ -226,3 +226,29 @@ TEST_CASE("sample part seat.obj with the deformation solved on a coarse mesh", "
 TEST_CASE("sample part ridge.obj with the deformation solved on a coarse mesh", "[parts][slow]") {
   check_coarse_solve("ridge.obj", 3.0, 0.03);
 }
+
+TEST_CASE("sample part seat.obj: --direction auto priced on a coarse mesh", "[parts][slow]") {
+  const auto [cage, surface] = load_part("seat.obj");
+  TempDir dir;
+  geometry::PlanOptions plan;
+  plan.ball_radius = 1.0;
+  plan.scallop = 0.01;
+  plan.choose_direction = true;
+  plan.tolerance = 0.001;
+  const auto fine = testing::plan_only(cage, surface, plan);
+  plan.coarse_solve_from = 0;
+  geometry::VerifyOptions verify;
+  verify.ball_radius = 1.0;
+  verify.scallop_target = 0.01;
+  verify.sample_spacing = 1.0 / 8.0;
+  const auto coarse = testing::plan_and_verify(cage, surface, plan, verify, dir.path() / "c.cl");
+  const auto& d = coarse.report;
+  INFO("coarse: along " << coarse.plan.direction_deg << ", max " << d.max_scallop << " gouge "
+                        << d.max_gouge << " cutting " << coarse.plan.cut_length << "; fine: along "
+                        << fine.direction_deg << ", cutting " << fine.cut_length);
+  CHECK(coarse.plan.direction_prices.size() >= 6);
+  CHECK(coarse.plan.solve_vertices * 2 < coarse.plan.mesh_vertices);
+  CHECK(d.max_scallop <= 1.05 * 0.01);
+  CHECK(d.max_gouge <= 2.5 * *plan.tolerance);
+  CHECK(coarse.plan.cut_length <= 1.08 * fine.cut_length);
+}

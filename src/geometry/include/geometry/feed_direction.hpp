@@ -14,6 +14,7 @@
 // for the plan. Directions are in the XY plane, from +X.
 
 #include "base/error.hpp"
+#include "geometry/coarse_deformation.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/surface_mesh.hpp"
 
@@ -45,6 +46,10 @@ struct DirectionPricing {
   std::optional<double> insertion_margin; // mm; default the widest CL spacing
   double axis_preference = 0.02;          // fraction of the length
   std::vector<char> in_reach;             // PassIntervals::in_reach
+  // When given, each candidate is solved on the coarse mesh and priced on the fine one,
+  // after `fine_rounds` solves measured there at most.
+  const CoarseSolver* coarse = nullptr;
+  int fine_rounds = 8;
 };
 
 // The slicing normal of a feed direction: horizontal, across the feed.

@@ -30,6 +30,7 @@
 #include "base/bounded_queue.hpp"
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
+#include "geometry/coarse_deformation.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/feed_direction.hpp"
 #include "geometry/lifted_regions.hpp"
@@ -48,6 +49,7 @@
 #include "geometry/unreachable_regions.hpp"
 
 #include <functional>
+#include <memory>
 #include <optional>
 
 namespace subfeed::geometry {
@@ -188,15 +190,8 @@ private:
   void face(double direction_deg); // the feed direction and the slicing normal
   // The deformation the passes are sliced from: iso-planar, rings, or solved (or the
   // direction pricing's own solve), and rings instead where auto finds them shorter.
-  // `cage` and `surface` are those the mesh was made from.
   [[nodiscard]] Expected<void> deform(const PassIntervals& intervals, DirectionChoice choice,
-                                      const SolveProgress& progress, const Cage& cage,
-                                      const LimitSurface& surface);
-  // The parallel passes' deformation solved on a coarser mesh and carried to this one.
-  [[nodiscard]] Expected<Deformation> deform_coarse(const PassIntervals& intervals,
-                                                    const Cage& cage, const LimitSurface& surface,
-                                                    double insertion_margin,
-                                                    const SolveProgress& progress);
+                                      const SolveProgress& progress);
   void summarise(const PassIntervals& intervals); // also lifts the clear balls
   void set_link_limits(double widest_spacing);
   // Where the tool tip runs: the design surface, or the ball centres for a fixed axis.
@@ -266,8 +261,10 @@ private:
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
   std::vector<double> reach_; // each triangle's farthest vertex from its centroid, mm
-  std::vector<Eigen::Vector3d> vertex_axes_; // the tool axis at each mesh vertex (+Z: fixed)
-  double longest_edge_ = 0.0;                // of the design mesh, mm
+  std::vector<Eigen::Vector3d> vertex_axes_;
+  // Large meshes are deformed on a coarse one (coarse_deformation.hpp); none on small ones.
+  std::unique_ptr<CoarseSolver> coarse_; // the tool axis at each mesh vertex (+Z: fixed)
+  double longest_edge_ = 0.0;            // of the design mesh, mm
   std::vector<LiftedPoint> lifted_;
   std::vector<Eigen::Vector3d> clear_balls_; // one per design vertex, mm
   std::vector<ReachLimit> tool_reach_;       // per design vertex
