@@ -49,6 +49,22 @@ LoadedPart load_part(const std::string& name) {
   return {std::move(*cage), std::move(*surface)};
 }
 
+geometry::PlanOptions part_plan(double radius, double scallop) {
+  geometry::PlanOptions plan;
+  plan.ball_radius = radius;
+  plan.scallop = scallop;
+  return plan;
+}
+
+// The meter for a part; `spacing` 0 leaves the meter its own.
+geometry::VerifyOptions part_meter(double radius, double scallop, double spacing = 0.0) {
+  geometry::VerifyOptions verify;
+  verify.ball_radius = radius;
+  verify.scallop_target = scallop;
+  verify.sample_spacing = spacing;
+  return verify;
+}
+
 // `bends`: the need changes along the passes (the dome's top against its walls); the passes
 // bend to follow it instead of breaking into pieces with inserted passes between, so the
 // links stay well under the cut (held straight, the dome's were 2.7 times the cut).
@@ -162,14 +178,10 @@ TEST_CASE("sample part dome.obj: --direction auto takes the rings", "[parts][slo
 TEST_CASE("sample part seat.obj as concentric rings", "[parts][slow]") {
   const auto [cage, surface] = load_part("seat.obj");
   TempDir dir;
-  geometry::PlanOptions plan;
-  plan.ball_radius = 1.0;
-  plan.scallop = 0.005;
+  auto plan = part_plan(1.0, 0.005);
   plan.pattern = geometry::PassPattern::concentric;
-  geometry::VerifyOptions verify;
-  verify.ball_radius = 1.0;
-  verify.scallop_target = 0.005;
-  const auto rings = testing::plan_and_verify(cage, surface, plan, verify, dir.path() / "rings.cl");
+  const auto rings = testing::plan_and_verify(cage, surface, plan, part_meter(1.0, 0.005),
+                                              dir.path() / "rings.cl");
   const auto& d = rings.report;
   INFO("rings max " << d.max_scallop << " gouge " << d.max_gouge << " cutting " << d.cutting_length
                     << " L/L* " << d.cutting_length / d.ideal_length);
@@ -188,18 +200,13 @@ void check_coarse_solve(const char* name, double radius, double h) {
   const auto [cage, surface] = load_part(name);
   TempDir dir;
   for (const double direction : {0.0, 90.0, 45.0}) {
-    geometry::PlanOptions plan;
-    plan.ball_radius = radius;
-    plan.scallop = h;
+    auto plan = part_plan(radius, h);
     plan.direction_deg = direction;
     plan.tolerance = 0.001;
     const auto fine = testing::plan_only(cage, surface, plan);
     plan.coarse_solve_from = 0;
-    geometry::VerifyOptions verify;
-    verify.ball_radius = radius;
-    verify.scallop_target = h;
-    verify.sample_spacing = radius / 8.0;
-    const auto coarse = testing::plan_and_verify(cage, surface, plan, verify, dir.path() / "c.cl");
+    const auto coarse = testing::plan_and_verify(
+        cage, surface, plan, part_meter(radius, h, radius / 8.0), dir.path() / "c.cl");
     const auto& d = coarse.report;
     INFO(name << " along " << direction << ": coarse max " << d.max_scallop << " gouge "
               << d.max_gouge << " cutting " << coarse.plan.cut_length << " on "
@@ -230,18 +237,13 @@ TEST_CASE("sample part ridge.obj with the deformation solved on a coarse mesh", 
 TEST_CASE("sample part seat.obj: --direction auto priced on a coarse mesh", "[parts][slow]") {
   const auto [cage, surface] = load_part("seat.obj");
   TempDir dir;
-  geometry::PlanOptions plan;
-  plan.ball_radius = 1.0;
-  plan.scallop = 0.01;
+  auto plan = part_plan(1.0, 0.01);
   plan.choose_direction = true;
   plan.tolerance = 0.001;
   const auto fine = testing::plan_only(cage, surface, plan);
   plan.coarse_solve_from = 0;
-  geometry::VerifyOptions verify;
-  verify.ball_radius = 1.0;
-  verify.scallop_target = 0.01;
-  verify.sample_spacing = 1.0 / 8.0;
-  const auto coarse = testing::plan_and_verify(cage, surface, plan, verify, dir.path() / "c.cl");
+  const auto coarse = testing::plan_and_verify(cage, surface, plan, part_meter(1.0, 0.01, 0.125),
+                                               dir.path() / "c.cl");
   const auto& d = coarse.report;
   INFO("coarse: along " << coarse.plan.direction_deg << ", max " << d.max_scallop << " gouge "
                         << d.max_gouge << " cutting " << coarse.plan.cut_length << "; fine: along "
