@@ -42,9 +42,10 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
 
 // One face's tessellation, where its points landed in a mesh, and its triangles bucketed
 // over the face's parameter domain so a point finds its triangle in a few tests. Bfr lays
-// a face of more than four sides out as one tile per corner, and a triangle along the
-// border of two tiles spans the domain between them: there the triangle is found by the
-// point's position instead (such faces are few: one subdivision step leaves none).
+// a face of other than four sides out as one tile per corner (a Catmull-Clark triangle
+// too), and a triangle along the border of two tiles spans the domain between them: there
+// the triangle is found by the point's position instead (such faces are few: one
+// subdivision step leaves none).
 class FaceCells {
 public:
   FaceCells(FaceTessellation tess, std::span<const int> vertex, int cells_across,
@@ -175,7 +176,7 @@ Expected<CoarseMesh> coarse_mesh(const Cage& cage, const LimitSurface& surface,
     if (!surface.has_patch(f)) {
       continue;
     }
-    const bool tiled = surface.face_size(f) > 4;
+    const bool tiled = surface.face_size(f) != 4;
     const FaceCells fine_face(surface.tessellate(f, fine_edges[i], fine.face_rates[i]),
                               face_points(fine, f), fine.face_rates[i],
                               tiled ? &fine.points : nullptr);

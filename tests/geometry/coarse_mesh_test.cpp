@@ -1,7 +1,7 @@
 // The coarse mesh and its map (coarse_mesh.hpp): a field on the coarse vertices reaches the
 // fine ones as the surface has it, to the coarse cells' chord, and each coarse vertex's
-// nearest fine vertex is a neighbour, on every sample part (hexagons on the ridge) and on a
-// cage with a sharp crease, for several coarsening factors.
+// nearest fine vertex is a neighbour, on every sample part (hexagons on the ridge), on a
+// cage with a sharp crease and on one with triangles, for several coarsening factors.
 
 #include "geometry/coarse_mesh.hpp"
 #include "geometry/limit_surface.hpp"
@@ -9,6 +9,7 @@
 #include "geometry/surface_mesh.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -24,6 +25,30 @@ geometry::Cage folded() {
                         "v 20 10 8\nv 30 10 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
                         "t crease 2/1/0 1 5 10\nt crease 2/1/0 2 6 10\n");
   auto cage = geometry::parse_obj(in, "folded.obj");
+  REQUIRE(cage);
+  return std::move(*cage);
+}
+
+// A raised hexagonal fan of six triangles round a centre and a ring of quads round it: Bfr's
+// triangle domain beside quads.
+geometry::Cage fan() {
+  std::string text = "v 0 0 6\n";
+  for (int ring = 1; ring <= 2; ++ring) {
+    for (int k = 0; k < 6; ++k) {
+      const double a = k * 3.14159265358979 / 3.0;
+      text += "v " + std::to_string(10.0 * ring * std::cos(a)) + " " +
+              std::to_string(10.0 * ring * std::sin(a)) + " " + std::to_string(6.0 - 3.0 * ring) +
+              "\n";
+    }
+  }
+  for (int k = 0; k < 6; ++k) {
+    const int a = 2 + k, b = 2 + (k + 1) % 6;
+    text += "f 1 " + std::to_string(a) + " " + std::to_string(b) + "\n";
+    text += "f " + std::to_string(a) + " " + std::to_string(a + 6) + " " + std::to_string(b + 6) +
+            " " + std::to_string(b) + "\n";
+  }
+  std::istringstream in(text);
+  auto cage = geometry::parse_obj(in, "fan.obj");
   REQUIRE(cage);
   return std::move(*cage);
 }
@@ -95,6 +120,8 @@ TEST_CASE("a field on the coarse mesh reaches the fine mesh as the surface has i
   for (const int factor : {2, 3, 4}) {
     INFO("folded strip, factor " << factor);
     check_map(folded(), 12, factor);
+    INFO("triangle fan, factor " << factor);
+    check_map(fan(), 12, factor);
   }
 }
 

@@ -2,7 +2,8 @@
 // A coarser mesh of the same limit surface, for fields that vary over the scale of the
 // surface's shape rather than of the chordal tolerance (the deformation's xi'), and where the
 // two meshes lie in each other. Both are Bfr tessellations of the same cage faces, so a fine
-// vertex is found in the coarse triangle that holds its (u, v) in its own face's domain, and
+// vertex is found in the coarse triangle that holds its (u, v) in its own face's domain (on
+// a face of other than four sides, the triangle nearest it of that face's), and
 // a field on the coarse vertices is carried to it by barycentric weights there: exact at
 // shared points, continuous across cage edges (neighbours share every point along them).
 // Each coarse vertex also knows the fine vertex nearest it in that domain, for per-vertex
