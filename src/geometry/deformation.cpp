@@ -123,18 +123,17 @@ struct Priced {
   PassInsertion insertion;
 };
 
-Priced price(const std::vector<Eigen::Vector3d>& c, const std::vector<Eigen::Vector3d>& path_points,
-             const std::vector<std::array<int, 3>>& triangles, const std::vector<double>& deformed,
-             double reference, PassIntervals& measured_against, const NeedAcross& need_across,
-             double insertion_margin, double allowance) {
+Priced price(const DeformedMesh& m, const std::vector<double>& deformed, double reference,
+             PassIntervals& measured_against, double insertion_margin, double allowance) {
   Priced p;
   p.planes = space_planes(deformed, reference);
-  if (need_across) {
-    measured_against.cl_spacing = need_across(vertex_gradients(c, triangles, deformed));
+  if (m.need_across) {
+    measured_against.cl_spacing =
+        m.need_across(vertex_gradients(m.cl_points, m.triangles, deformed));
   }
-  p.measured = spacing_ratios(c, triangles, deformed, p.planes.step, measured_against);
-  p.insertion = pass_insertion(c, triangles, p.measured,
-                               level_lengths(path_points, triangles, deformed, p.planes.step),
+  p.measured = spacing_ratios(m.cl_points, m.triangles, deformed, p.planes.step, measured_against);
+  p.insertion = pass_insertion(m.cl_points, m.triangles, p.measured,
+                               level_lengths(m.path_points, m.triangles, deformed, p.planes.step),
                                insertion_margin, allowance);
   return p;
 }
@@ -221,6 +220,16 @@ struct Round {
 };
 using Measure = std::function<Round(std::vector<double> solved, const std::vector<double>& eta)>;
 
+// A solve on `m` measured and priced on `m` itself, eta to rise at its own vertices.
+Round measured_on(const DeformedMesh& m, std::vector<double> deformed, double reference,
+                  PassIntervals& against, double insertion_margin, double allowance) {
+  Round round;
+  round.priced = price(m, deformed, reference, against, insertion_margin, allowance);
+  round.raise = vertex_raise(m.cl_points.size(), m.triangles, round.priced.measured);
+  round.deformed = std::move(deformed);
+  return round;
+}
+
 // Solves `rounds` times at most from `eta`, keeping in `d` the cheapest solve and in
 // `kept_eta` its eta, and stops once the passes are nowhere wider than the need.
 void solve_rounds(const DeformationSystem& system, const std::vector<double>& xi,
@@ -297,13 +306,10 @@ Expected<Deformation> deform_cl_mesh(const std::vector<Eigen::Vector3d>& c,
   Deformation d = iso_planar(c, s, intervals);
   SUBFEED_TRY_ASSIGN(const auto system, DeformationSystem::build(c, triangles, d.xi));
   PassIntervals measured_against = intervals;
+  const DeformedMesh mesh{c, path_points, triangles, intervals, need_across};
   const auto measure = [&](std::vector<double> deformed, const std::vector<double>&) {
-    Round round;
-    round.priced = price(c, path_points, triangles, deformed, d.reference, measured_against,
-                         need_across, insertion_margin, allowance);
-    round.raise = vertex_raise(c.size(), triangles, round.priced.measured);
-    round.deformed = std::move(deformed);
-    return round;
+    return measured_on(mesh, std::move(deformed), d.reference, measured_against, insertion_margin,
+                       allowance);
   };
   std::vector<double> kept_eta;
   solve_rounds(
@@ -334,13 +340,8 @@ Expected<Deformation> deform_on_coarse(const DeformedMesh& coarse, const CoarseM
                      DeformationSystem::build(coarse.cl_points, coarse.triangles, on_coarse.xi));
   PassIntervals coarse_against = coarse.intervals;
   const auto measure_coarse = [&](std::vector<double> deformed, const std::vector<double>&) {
-    Round round;
-    round.priced =
-        price(coarse.cl_points, coarse.path_points, coarse.triangles, deformed, on_coarse.reference,
-              coarse_against, coarse.need_across, settings.insertion_margin, settings.allowance);
-    round.raise = vertex_raise(coarse.cl_points.size(), coarse.triangles, round.priced.measured);
-    round.deformed = std::move(deformed);
-    return round;
+    return measured_on(coarse, std::move(deformed), on_coarse.reference, coarse_against,
+                       settings.insertion_margin, settings.allowance);
   };
   std::vector<double> kept_eta = initial_eta(coarse.intervals, on_coarse.reference);
   solve_rounds(system, on_coarse.xi, kept_eta, settings.coarse_rounds, measure_coarse,
@@ -354,9 +355,8 @@ Expected<Deformation> deform_on_coarse(const DeformedMesh& coarse, const CoarseM
   const auto measure_fine = [&](const std::vector<double>& solved, const std::vector<double>& eta) {
     Round round;
     round.deformed = carry(map, solved, eta, d.xi, carried_xi);
-    round.priced =
-        price(fine.cl_points, fine.path_points, fine.triangles, round.deformed, d.reference,
-              fine_against, fine.need_across, settings.insertion_margin, settings.allowance);
+    round.priced = price(fine, round.deformed, d.reference, fine_against, settings.insertion_margin,
+                         settings.allowance);
     round.raise = raise_at_corners(
         map, vertex_raise(fine.cl_points.size(), fine.triangles, round.priced.measured),
         solved.size());
