@@ -49,7 +49,7 @@ PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, 
   PlanRun run;
   run.seconds = bench::best_seconds(1, [&] {
     auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options).value();
-    auto writer = cl::ClWriter::create(out, {"BENCH", {2 * radius, radius}, true, {}}).value();
+    auto writer = cl::ClWriter::create(out, {"BENCH", {2 * radius, radius}, true, {}, {}}).value();
     (void)planner.run([&](const cl::ClPose& p) -> Expected<void> {
       writer.write(p);
       return {};
@@ -156,7 +156,7 @@ void bench_gate(const std::filesystem::path& dir) {
     const auto file = dir / "gate.cl";
     const auto run = plan(part.cage, surface, 3.0, part.scallop, false, file);
     const double gate = bench::best_seconds(3, [&] {
-      auto g = geometry::MotionGate::build(part.cage, surface, {3.0, 1e-3}).value();
+      auto g = geometry::MotionGate::build(part.cage, surface, {3.0, 1e-3, false, {}, {}}).value();
       auto reader = cl::ClReader::open(file).value();
       while (auto pose = reader.next().value()) {
         (void)g.check(*pose);

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 fs::path write_cl(long poses) {
   const auto path = fs::temp_directory_path() / ("subfeed-bench-" + std::to_string(poses) + ".cl");
-  auto writer = cl::ClWriter::create(path, {"BENCH", {6.0, 3.0}, true, {}});
+  auto writer = cl::ClWriter::create(path, {"BENCH", {6.0, 3.0}, true, {}, {}});
   if (!writer) {
     std::abort();
   }

@@ -158,7 +158,7 @@ void bench_stages(const fs::path& dir) {
 // A zig-zag raster of `points` points over 600 x 500 mm, heights on gentle waves, for a
 // three-axis machine: one block per point.
 void write_raster(const fs::path& file, long points) {
-  auto writer = cl::ClWriter::create(file, {"RASTER", {6.0, 3.0}, false, {}}).value();
+  auto writer = cl::ClWriter::create(file, {"RASTER", {6.0, 3.0}, false, {}, {}}).value();
   const long rows = std::max(2L, static_cast<long>(std::sqrt(points / 2.5)));
   const long columns = points / rows;
   const auto z = [](double x, double y) {

@@ -99,11 +99,18 @@ Expected<bool> ClReader::header_record(std::string_view record) {
     header_.part_name = std::string(trim(record.substr(6)));
     return true;
   }
-  // PPRINT is free text for the operator; only subfeed's setup record means anything here.
+  // PPRINT is free text for the operator; only subfeed's setup, tool and fixture records
+  // mean anything here.
   if (record.starts_with("PPRINT")) {
     const auto text = trim(record.substr(6));
     if (text.starts_with("SETUP ")) {
       header_.setup = std::string(trim(text.substr(6)));
+    } else if (text.starts_with("TOOL ")) {
+      header_.whole_tool.tool = std::string(trim(text.substr(5)));
+      header_.whole_tool.tool_line = line_;
+    } else if (text.starts_with("FIXTURE ")) {
+      header_.whole_tool.fixture = std::string(trim(text.substr(8)));
+      header_.whole_tool.fixture_line = line_;
     }
     return true;
   }

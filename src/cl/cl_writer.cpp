@@ -18,6 +18,12 @@ Expected<ClWriter> ClWriter::create(const std::filesystem::path& path, const ClH
   if (!header.setup.empty()) {
     text += "PPRINT SETUP " + header.setup + "\n";
   }
+  if (!header.whole_tool.tool.empty()) {
+    text += "PPRINT TOOL " + header.whole_tool.tool + "\n";
+  }
+  if (!header.whole_tool.fixture.empty()) {
+    text += "PPRINT FIXTURE " + header.whole_tool.fixture + "\n";
+  }
   writer.out_.write(text);
   writer.line_ = static_cast<long>(std::ranges::count(text, '\n'));
   return writer;

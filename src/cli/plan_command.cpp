@@ -12,6 +12,7 @@
 #include "geometry/part_setup.hpp"
 #include "geometry/toolpath_planner.hpp"
 #include "job/plan_refusal.hpp"
+#include "job/tool_spec.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -45,7 +46,9 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * radius, radius},
                       !options.fixed_axis,
-                      geometry::setup_text(setup)};
+                      geometry::setup_text(setup),
+                      {}};
+  record_tool(header, options, planner.summary());
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(output, header));
   const auto ran = planner.run(
       [&writer](const cl::ClPose& pose) -> Expected<void> {
@@ -114,6 +117,9 @@ Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
                          "parallel passes",
                          s.rings() ? "concentric rings cut" : "parallel passes kept", s.ring_price,
                          s.parallel_price));
+  }
+  if (options.whole_tool) {
+    log.info(tool_summary(options.tool, s));
   }
   log.info(gate_summary(s.gate));
   log.detail(time_summary(s.times, s.solves));

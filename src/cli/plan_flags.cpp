@@ -8,6 +8,35 @@ using namespace subfeed::job; // NOLINT: the front wires the job library
 
 void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
   cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required(required);
+  cmd.add_option("--flute", o.flute, "Flute length from the tip, mm (default 3 D)")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-3, 10000.0));
+  cmd.add_option("--shank", o.shank, "Shank diameter, mm (default the cutter's)")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-3, 10000.0));
+  cmd.add_option("--stickout", o.stickout,
+                 "From the tip to the holder's face, mm (default 4 D, at least the flutes)")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-3, 10000.0));
+  cmd.add_option("--holder", o.holder,
+                 "A holder stage, D:L (cylinder) or D1:D2:L (cone, D1 nearer the tip), mm; repeat "
+                 "for a stack, bottom first (default: no holder)")
+      ->type_name("D:L")
+      ->take_all();
+  cmd.add_option("--floor", o.floor,
+                 "Table or fixture top, z in the part's frame (mm), or none (default: the part's "
+                 "lowest point); nothing of the tool may go below it")
+      ->type_name("Z|none");
+  cmd.add_option("--stock-margin", o.stock_margin,
+                 "How far below the floor the stock reaches, mm: the ball and flutes may cut that "
+                 "deep (default 0)")
+      ->type_name("MM")
+      ->check(CLI::Range(0.0, 10000.0));
+  cmd.add_option("--clearance-min", o.clearance_min,
+                 "Least distance every part of the tool but the ball keeps from the part, mm "
+                 "(default 0.5)")
+      ->type_name("MM")
+      ->check(CLI::Range(0.0, 100.0));
   cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required(required);
   cmd.add_option(
       "--direction", o.direction,

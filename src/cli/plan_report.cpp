@@ -129,6 +129,10 @@ std::string time_summary(const geometry::PlanTimes& t, int solves) {
 
 namespace {
 
+std::string shown_distance(double mm, double searched) {
+  return std::isfinite(mm) ? fmt::format("{:.3f} mm", mm) : fmt::format("over {:g} mm", searched);
+}
+
 std::string describe(const geometry::ReachRegion& r) {
   const Eigen::Vector3d size = r.high - r.low;
   std::string why;
@@ -138,6 +142,14 @@ std::string describe(const geometry::ReachRegion& r) {
   if (r.hidden > 0) {
     why += fmt::format("{}{} surface vertices hidden under the part", why.empty() ? "" : ", ",
                        r.hidden);
+  }
+  if (r.collides > 0) {
+    why += fmt::format("{}{} where no tool axis keeps the holder, shank and flutes clear",
+                       why.empty() ? "" : ", ", r.collides);
+  }
+  if (r.below_floor > 0) {
+    why += fmt::format("{}{} the ball reaches only below the floor", why.empty() ? "" : ", ",
+                       r.below_floor);
   }
   return fmt::format("    near ({:.2f}, {:.2f}, {:.2f}) mm, over {:.2f} x {:.2f} x {:.2f} mm: "
                      "{:.1f} mm^2, {}",
@@ -160,7 +172,8 @@ void report_out_of_reach(const geometry::PlanSummary& s, Logger& log) {
     area += r.area_mm2;
   }
   log.warning(fmt::format("  left uncut, out of the tool's reach: {:.1f} mm^2 in {} region(s) "
-                          "(normals more than {:g} deg from +Z, or hidden under the part)",
+                          "(normals more than {:g} deg from +Z, hidden under the part, no "
+                          "clear tool axis, or below the floor)",
                           area, regions.size(), s.reach_angle_deg));
   constexpr std::size_t shown = 8;
   for (std::size_t i = 0; i < std::min(shown, regions.size()); ++i) {
@@ -192,7 +205,41 @@ void report_left_material(const geometry::PlanSummary& s, Logger& log) {
   }
 }
 
+std::string tool_summary(const geometry::ToolAssembly& tool, const geometry::PlanSummary& s) {
+  const auto& f = s.fixture;
+  const auto& c = s.clear_axes;
+  std::string text = fmt::format(
+      "  tool: {}{}; floor {}, stock {:g} mm below it, clearance {:g} mm", tool.text(),
+      tool.defaulted ? " (defaults: flutes 3D, shank D, stick-out 4D; give --flute, --shank, "
+                       "--stickout, --holder for the real tool)"
+                     : "",
+      f.floor_z ? fmt::format("z {:.3f} mm", *f.floor_z) : std::string("none"), f.stock_margin,
+      f.clearance_min);
+  if (c.turned > 0 || c.collided > 0) {
+    text += fmt::format("; tool axis turned clear at {} vertices (up to {:.1f} deg, ramped over "
+                        "{} more), {} left uncut with no clear axis",
+                        c.turned, c.largest_turn_deg, c.spread, c.collided);
+  }
+  return text;
+}
+
 std::string gate_summary(const geometry::GateReport& gate) {
+  if (!gate.clearance.empty()) {
+    const double searched = gate.clearance_searched;
+    std::string bodies;
+    for (const auto& b : gate.clearance) {
+      bodies += fmt::format("{}{} ", bodies.empty() ? "" : "; ", b.body);
+      bodies += b.body == "ball" ? "" : fmt::format("{} from the part, ",
+                                                         shown_distance(b.to_part, searched));
+      bodies += std::isfinite(b.to_floor) ? fmt::format("{:.3f} mm above the floor", b.to_floor)
+                                          : std::string("no floor");
+    }
+    return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its mesh "
+                       "within {:g} um): no cut deeper than {:g} um, no rapid touching it; least "
+                       "clearance: {}",
+                       gate.moves, gate.rapids, gate.chord * 1000.0, gate.tolerance * 1000.0,
+                       bodies);
+  }
   return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its mesh "
                      "within {:g} um): no cut deeper than {:g} um, no rapid touching it",
                      gate.moves, gate.rapids, gate.chord * 1000.0, gate.tolerance * 1000.0);

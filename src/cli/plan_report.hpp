@@ -25,6 +25,10 @@ void report_out_of_reach(const geometry::PlanSummary& summary, Logger& log);
 // Where the plan's time went, stage by stage ("time: meshing 0.41 s, ..."): for --verbose.
 [[nodiscard]] std::string time_summary(const geometry::PlanTimes& times, int solves);
 
+// The tool and fixture the plan kept clear, and where it turned the axis for them.
+[[nodiscard]] std::string tool_summary(const geometry::ToolAssembly& tool,
+                                       const geometry::PlanSummary& summary);
+
 // The motion gate's line of the summary: how many moves it checked, and against what.
 [[nodiscard]] std::string gate_summary(const geometry::GateReport& gate);
 

@@ -55,6 +55,8 @@ std::vector<ReachRegion> reach_regions(const SurfaceMesh& mesh,
         counted[u] = 1;
         r.tilted += reach[u] == ReachLimit::tilt ? 1 : 0;
         r.hidden += reach[u] == ReachLimit::hidden ? 1 : 0;
+        r.collides += reach[u] == ReachLimit::collision ? 1 : 0;
+        r.below_floor += reach[u] == ReachLimit::floor ? 1 : 0;
       }
     }
   }

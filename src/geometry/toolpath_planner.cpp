@@ -24,6 +24,9 @@ namespace subfeed::geometry {
 namespace {
 
 constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along a pass
+// mm a pass point keeps beyond the fixture's clearance_min: the move to the next point blends
+// the two poses, and the gate holds the blend to clearance_min.
+constexpr double pass_clearance_extra = 0.05;
 // The longest mesh cell, in flat step-overs (see prepare).
 constexpr double reach_cells = 2.0;
 // The front's marches after the first (concentric_field.hpp): the third settles the
@@ -82,14 +85,25 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
   const double gate_tolerance =
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
+  Fixture fixture = options.fixture;
+  if (options.floor_at_lowest) {
+    // The mesh's vertices lie on the limit surface: its lowest one is the part's lowest
+    // point within the chord, which the floor tolerance covers.
+    fixture.floor_z =
+        std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
+  }
+  const GateOptions gate_options{options.ball_radius, gate_tolerance, options.whole_tool,
+                                 options.tool, fixture};
   SUBFEED_TRY_ASSIGN(auto gate, [&] {
     const auto clock = enter(PlanStage::gate_mesh);
     StageShare share(observer.share);
-    return finer ? MotionGate::build(finer->cage, finer->surface,
-                                     {options.ball_radius, gate_tolerance}, &share)
-                 : MotionGate::build(cage, surface, {options.ball_radius, gate_tolerance}, &share);
+    return finer ? MotionGate::build(finer->cage, finer->surface, gate_options, &share)
+                 : MotionGate::build(cage, surface, gate_options, &share);
   }());
-  ToolpathPlanner planner(options, std::move(mesh), std::move(gate));
+  auto planned = options;
+  planned.fixture = fixture;
+  ToolpathPlanner planner(planned, std::move(mesh), std::move(gate));
+  planner.summary_.fixture = fixture;
   planner.summary_.cage_levels = finer ? finer->levels : 0;
   planner.summary_.cage_faces = finer ? finer->cage.face_count() : cage.face_count();
   planner.chord_tolerance_ = chord;
@@ -100,7 +114,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   }
   {
     const auto clock = enter(PlanStage::reach);
-    StageShare share(observer.share, options.fixed_axis ? 2 : 3); // balls, axes, reach
+    // balls, axes, reach, the tool's clearance
+    StageShare share(observer.share, (options.fixed_axis ? 2 : 3) + (options.whole_tool ? 1 : 0));
     planner.find_reach(gate_tolerance, share);
   }
   if (planner.mesh_.vertex_count() >= options.coarse_solve_from) {
@@ -309,6 +324,14 @@ void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
   top_z_ = std::ranges::max(mesh_.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
   tool_reach_ = surface_reach(mesh_, clear_balls_, axes, design, top_z_, reach_options_, &share);
   any_hidden_ = std::ranges::find(tool_reach_, ReachLimit::hidden) != tool_reach_.end();
+  if (options_.whole_tool) {
+    share.next_step();
+    const AssemblyClearance clearance(options_.tool, options_.fixture, design);
+    summary_.clear_axes = clear_axes(mesh_, cl_points_, axes, tool_reach_, clearance,
+                                     {.max_tilt_deg = options_.max_tilt_deg,
+                                      .fixed_axis = options_.fixed_axis},
+                                     &share);
+  }
   for (int t = 0; t < mesh_.triangle_count(); ++t) {
     if (std::ranges::all_of(mesh_.triangles[static_cast<std::size_t>(t)], [&](int v) {
           return tool_reach_[static_cast<std::size_t>(v)] == ReachLimit::reached;
@@ -350,19 +373,6 @@ std::vector<unsigned char> ToolpathPlanner::depth_cut() const {
     }
   }
   return out;
-}
-
-void ToolpathPlanner::set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const {
-  if (options_.fixed_axis) {
-    for (auto& p : pass) {
-      p.axis = Eigen::Vector3d::UnitZ();
-    }
-    return;
-  }
-  for (auto& p : pass) {
-    p.axis = vertex_axis(p.contact, p.normal, triangles);
-  }
-  smooth_axes(pass);
 }
 
 void ToolpathPlanner::smooth_axes(std::vector<PassPoint>& pass) const {
@@ -739,7 +749,7 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
     std::vector<PassPoint> run;
     for (const int i : chain) {
       const auto u = static_cast<std::size_t>(i);
-      run.push_back({cl_points_[u], mesh_.points[u], mesh_.normals[u], mesh_.normals[u]});
+      run.push_back({cl_points_[u], mesh_.points[u], mesh_.normals[u], vertex_axes_[u]});
     }
     if (run.size() >= 2) {
       clear_pass(run, design);
@@ -752,12 +762,19 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& design) const {
   std::vector<std::vector<PassPoint>> pieces;
-  if (!any_hidden_) {
+  if (!any_hidden_ && !options_.whole_tool) {
     pieces.push_back(std::move(pass));
     return pieces;
   }
   // Between two vertices in reach an edge can still pass under the part (round the corner
-  // of a shadow): each point must withdraw, since any may end a piece and start a link.
+  // of a shadow): each point must withdraw, since any may end a piece and start a link. The
+  // whole tool is held to the fixture's rules at every point, with a little to spare for the
+  // move between two points (the motion gate holds it to them along the move).
+  std::optional<AssemblyClearance> clearance;
+  if (options_.whole_tool) {
+    clearance.emplace(options_.tool, options_.fixture, design);
+  }
+  const double r = options_.ball_radius;
   std::vector<PassPoint> piece;
   const auto close = [&] {
     if (piece.size() >= 2) {
@@ -766,7 +783,8 @@ ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& d
     piece.clear();
   };
   for (auto& p : pass) {
-    if (withdraws(design, p.centre, p.axis, top_z_, reach_options_)) {
+    if ((!any_hidden_ || withdraws(design, p.centre, p.axis, top_z_, reach_options_)) &&
+        (!clearance || clearance->clear(p.centre - r * p.axis, p.axis, pass_clearance_extra))) {
       piece.push_back(std::move(p));
     } else {
       close();
@@ -860,7 +878,6 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   // Only the triangles in reach: a pass ends where the tool's reach does.
   const auto cut = triangles_cut();
   const TriangleTree design = design_tree();
-  const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
   // Two cores: a thread cuts the levels into passes while this one links them, gates every
   // pose and hands it on, in the same order as one thread would. The cutting side writes only
   // the slicer, the lifted points and the path's balls; this side only the last pose, the
@@ -888,7 +905,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
   for (auto& whole : boundary_passes(cut, design)) {
-    set_axes(whole, triangles);
+    smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {
       SUBFEED_TRY(emit_pass(pass, sink, design));
     }

@@ -1,6 +1,7 @@
 #include "job/cl_gate.hpp"
 
 #include "geometry/limit_surface.hpp"
+#include "job/tool_spec.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -21,9 +22,21 @@ Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_pat
   }
   SUBFEED_TRY_ASSIGN(auto cage, read_part_agreed(cage_path, setup, header.setup, cl_file));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, level));
-  return geometry::MotionGate::build(
-      cage, surface,
-      {cutter.diameter / 2, tolerance_mm > 0.0 ? tolerance_mm : geometry::default_gate_tolerance});
+  geometry::GateOptions options{
+      cutter.diameter / 2, tolerance_mm > 0.0 ? tolerance_mm : geometry::default_gate_tolerance,
+      false, {}, {}};
+  // The whole tool and the fixture, where the CL data records what it was planned for.
+  const auto& records = header.whole_tool;
+  if (!records.tool.empty() && !records.fixture.empty()) {
+    options.whole_tool = true;
+    SUBFEED_TRY_ASSIGN(options.tool,
+                       parse_tool_record(cutter.diameter / 2, records.tool,
+                                         {cl_file, static_cast<int>(records.tool_line), {}}));
+    SUBFEED_TRY_ASSIGN(options.fixture,
+                       parse_fixture_record(records.fixture,
+                                            {cl_file, static_cast<int>(records.fixture_line), {}}));
+  }
+  return geometry::MotionGate::build(cage, surface, options);
 }
 
 } // namespace subfeed::job

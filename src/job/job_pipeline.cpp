@@ -1,5 +1,7 @@
 #include "job/job_pipeline.hpp"
 
+#include "job/tool_spec.hpp"
+
 #include "cl/cl_reader.hpp"
 #include "cl/cl_writer.hpp"
 #include "job/motion_time.hpp"
@@ -102,7 +104,9 @@ Expected<void> JobPipeline::plan_all() {
                                         .share = [this](double done) { stage_share_ = done; }};
   SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(input.cage, input.surface,
                                                                       input.options, observer));
-  SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, spec_.header));
+  auto header = spec_.header;
+  record_tool(header, input.options, planner.summary());
+  SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, header));
   std::optional<cl::ClPose> last;
   double cut_mm = 0.0;
   const auto on_plane = [this](long plane, long planes) {

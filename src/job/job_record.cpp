@@ -195,7 +195,8 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
   cl::ClHeader header{std::filesystem::path(o.cage).stem().string(),
                       {2 * plan.ball_radius, plan.ball_radius},
                       !plan.fixed_axis,
-                      geometry::setup_text(setup)};
+                      geometry::setup_text(setup),
+                      {}};
   return JobSpec{.plan = PlanInput{std::move(cage), std::move(surface), plan},
                  .machine = std::move(machine),
                  .post = post,
@@ -204,19 +205,35 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
                  .gate = std::nullopt};
 }
 
+namespace {
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string out;
+  for (const auto& w : words) {
+    out += (out.empty() ? "" : ",") + w;
+  }
+  return out;
+}
+
+} // namespace
+
 std::string encode_job(const JobRecord& o) {
   const auto& p = o.plan;
   return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
                      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
                      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
-                     "gate_tolerance={} max_tilt={}{}",
+                     "gate_tolerance={} max_tilt={} whole_tool={} flute={} shank={} stickout={} "
+                     "holder={} floor={} stock_margin={} clearance_min={}{}",
                      escape(o.cage), escape(o.machine),
                      escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
                      number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
                      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
                      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
                      p.refine, number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage),
-                     number(p.gate_tolerance), number(p.max_tilt), setup_fields(o.setup));
+                     number(p.gate_tolerance), number(p.max_tilt), p.whole_tool ? 1 : 0,
+                     number(p.flute), number(p.shank), number(p.stickout),
+                     escape(joined(p.holder)), escape(p.floor),
+                     number(p.stock_margin), number(p.clearance_min), setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
@@ -239,6 +256,10 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
       return {};
     }
     return it->second;
+  };
+  const auto get_or = [&](const char* key, const char* otherwise) -> std::string {
+    const auto it = fields.find(key);
+    return it == fields.end() ? otherwise : it->second;
   };
   const auto real = [&](const char* key) {
     const auto value = parse_double(get(key));
@@ -278,6 +299,27 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
   }
   if (fields.contains("max_tilt")) {
     o.plan.max_tilt = real("max_tilt");
+  }
+  // Jobs recorded before the whole tool was checked re-plan as they were: the ball alone.
+  o.plan.whole_tool = get_or("whole_tool", "0") == "1";
+  if (o.plan.whole_tool) {
+    o.plan.flute = real("flute");
+    o.plan.shank = real("shank");
+    o.plan.stickout = real("stickout");
+    if (const auto holder = get("holder"); !holder.empty()) {
+      std::string_view rest = holder;
+      while (true) {
+        const auto comma = rest.find(',');
+        o.plan.holder.emplace_back(rest.substr(0, comma));
+        if (comma == std::string_view::npos) {
+          break;
+        }
+        rest.remove_prefix(comma + 1);
+      }
+    }
+    o.plan.floor = get_or("floor", "");
+    o.plan.stock_margin = real("stock_margin");
+    o.plan.clearance_min = real("clearance_min");
   }
   SUBFEED_TRY_ASSIGN(o.setup, setup_flags_of(fields, where));
   if (const auto it = fields.find("check_cage"); it != fields.end()) {

@@ -60,6 +60,13 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& o) {
   if (o.tolerance > 0.0) {
     options.tolerance = o.tolerance;
   }
+  if (o.whole_tool) {
+    options.whole_tool = true;
+    SUBFEED_TRY_ASSIGN(options.tool, tool_assembly_from(o));
+    SUBFEED_TRY_ASSIGN(const auto fixture, fixture_from(o));
+    options.fixture = fixture.fixture;
+    options.floor_at_lowest = fixture.floor_at_lowest;
+  }
   return options;
 }
 

@@ -378,7 +378,8 @@ TEST_CASE("plan leaves a closed part's underside uncut and says how much, and ve
                                                "reach: " +
                                                    mm2 +
                                                    R"( in 1 region\(s\) \(normals more than 60 )"
-                                                   R"(deg from \+Z, or hidden under the part\))");
+                                                   R"(deg from \+Z, hidden under the part, no )"
+                                                   R"(clear tool axis, or below the floor\))");
   REQUIRE(left.size() == 2);
   CHECK(has_line_matching(planned.err,
                           R"(subfeed: warning:     near \(0\.00, 0\.00, [0-9.]+\) mm, )"

@@ -32,7 +32,7 @@ Part part(double a, double z0 = 0.0, int n = 9) {
 }
 
 geometry::MotionGate gate_for(const Part& p, double tolerance = 1e-3) {
-  auto gate = geometry::MotionGate::build(p.cage, p.surface, {r, tolerance});
+  auto gate = geometry::MotionGate::build(p.cage, p.surface, {r, tolerance, false, {}, {}});
   REQUIRE(gate);
   return std::move(*gate);
 }

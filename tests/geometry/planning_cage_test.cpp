@@ -108,7 +108,7 @@ TEST_CASE("a plan over a subdivided cage says so and passes the motion gate on t
   CHECK(planner->summary().cage_levels >= 1);
   CHECK(planner->summary().cage_faces > cage.face_count());
   // Every pose through a gate built from the user's cage, not the planner's.
-  auto gate = geometry::MotionGate::build(cage, *surface, {2.0, 1e-2});
+  auto gate = geometry::MotionGate::build(cage, *surface, {2.0, 1e-2, false, {}, {}});
   REQUIRE(gate);
   long poses = 0;
   const auto ran = planner->run([&](const cl::ClPose& p) -> Expected<void> {

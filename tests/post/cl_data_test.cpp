@@ -88,7 +88,12 @@ TEST_CASE("what the CL writer writes the reader reads back to a nanometre") {
   TempDir dir;
   const auto path = dir.path() / "w.cl";
   auto writer = cl::ClWriter::create(
-      path, {"ROUND TRIP", {6.0, 3.0}, true, "up=y scale=10 origin=top-centre"});
+      path, {"ROUND TRIP",
+             {6.0, 3.0},
+             true,
+             "up=y scale=10 origin=top-centre",
+             {"flute=18 shank=6 stickout=40 holder=32:40", "floor=-1.5 margin=0 clearance=0.5", 0,
+              0}});
   REQUIRE(writer);
   std::vector<cl::ClPose> written;
   for (int i = 0; i < 50; ++i) {
@@ -108,6 +113,10 @@ TEST_CASE("what the CL writer writes the reader reads back to a nanometre") {
   REQUIRE(reader);
   CHECK(reader->header().setup == "up=y scale=10 origin=top-centre");
   CHECK(reader->header().part_name == "ROUND TRIP");
+  CHECK(reader->header().whole_tool.tool == "flute=18 shank=6 stickout=40 holder=32:40");
+  CHECK(reader->header().whole_tool.tool_line == 6);
+  CHECK(reader->header().whole_tool.fixture == "floor=-1.5 margin=0 clearance=0.5");
+  CHECK(reader->header().whole_tool.fixture_line == 7);
   for (const auto& w : written) {
     auto pose = reader->next();
     REQUIRE(pose);

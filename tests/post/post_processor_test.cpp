@@ -52,7 +52,7 @@ std::filesystem::path sphere_cl(const TempDir& dir,
                                 const std::function<std::array<double, 2>(double)>& path, int poses,
                                 const std::string& name = "part.cl") {
   const auto file = dir.path() / name;
-  auto writer = cl::ClWriter::create(file, {"SPHERE", {6.0, 3.0}, true, {}});
+  auto writer = cl::ClWriter::create(file, {"SPHERE", {6.0, 3.0}, true, {}, {}});
   REQUIRE(writer);
   for (int i = 0; i <= poses; ++i) {
     const auto [tilt, azimuth] = path(static_cast<double>(i) / poses);

@@ -13,7 +13,7 @@ PlannedPath plan_and_verify(const geometry::Cage& cage, const geometry::LimitSur
   auto planner = geometry::ToolpathPlanner::prepare(cage, surface, plan);
   REQUIRE(planner);
   auto writer =
-      cl::ClWriter::create(file, {"PART", {2 * plan.ball_radius, plan.ball_radius}, true, {}});
+      cl::ClWriter::create(file, {"PART", {2 * plan.ball_radius, plan.ball_radius}, true, {}, {}});
   REQUIRE(writer);
   REQUIRE(planner->run([&](const cl::ClPose& p) -> Expected<void> {
     writer->write(p);

@@ -28,6 +28,15 @@ struct Cutter {
   double corner_radius = 0.0; // mm; diameter / 2 for a ball end
 };
 
+// The tool above the ball and the fixture a path was planned against ("flute=18 shank=6
+// ...", "floor=0 margin=0 clearance=0.5": job/tool_spec.hpp), kept in `PPRINT TOOL` and
+// `PPRINT FIXTURE` records; empty when not recorded.
+struct WholeToolRecords {
+  std::string tool;
+  std::string fixture;
+  long tool_line = 0, fixture_line = 0; // where they were read, for errors; 0: not read
+};
+
 // What the records before the first motion say.
 struct ClHeader {
   std::string part_name;
@@ -36,6 +45,7 @@ struct ClHeader {
   // How the part was set up on the machine when planned ("up=y scale=10 origin=top-centre",
   // geometry/part_setup.hpp), kept in a `PPRINT SETUP ...` record; empty when not recorded.
   std::string setup;
+  WholeToolRecords whole_tool;
 };
 
 } // namespace subfeed::cl

@@ -18,9 +18,18 @@
 // a cut deeper than tolerance + chord + 1e-5 r is always refused, one shallower than
 // tolerance - chord - 1e-5 r never is. `chord` is tolerance / 4 unless a face needs more
 // than 256 segments an edge (then it is what 256 give; GateReport says it).
+//
+// With a tool assembly (assembly_clearance.hpp) it also holds every move to the fixture's
+// rules: each body above the ball keeps clearance_min from the part, nothing goes under the
+// floor (the ball and flutes under the stock), measured along the move as assembly_sweep.hpp
+// says, with steps of at least `least_step_mm`, against a mesh of its own within 5 um of
+// the surface: a move is refused when a measured pose breaks a rule, and one that breaks a
+// rule by more than least_step_mm / 2 + AssemblyClearance::resolution_mm + 5 um between
+// measured poses is always refused.
 
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
+#include "geometry/assembly_clearance.hpp"
 #include "geometry/cage.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/stage_share.hpp"
@@ -39,6 +48,10 @@ inline constexpr double default_gate_tolerance = 1e-3;
 struct GateOptions {
   double ball_radius = 3.0;                  // mm
   double tolerance = default_gate_tolerance; // mm
+  // The whole tool and the fixture; without whole_tool, the ball alone against the part.
+  bool whole_tool = false;
+  ToolAssembly tool;
+  Fixture fixture;
 };
 
 struct GateReport {
@@ -46,6 +59,11 @@ struct GateReport {
   long rapids = 0;        // of them rapids
   double chord = 0.0;     // mm between the gate's mesh and the surface, at most
   double tolerance = 0.0; // mm: GateOptions::tolerance
+  // With a tool assembly: each body's least clearance to the part and to the floor over
+  // every move accepted (AssemblyClearance::blank() order; a distance to the part is
+  // searched only within `clearance_searched` mm: infinity when farther).
+  std::vector<BodyClearance> clearance;
+  double clearance_searched = 0.0;
 };
 
 class MotionGate {
@@ -61,13 +79,25 @@ public:
 
   [[nodiscard]] const GateReport& report() const { return report_; }
   [[nodiscard]] const GateOptions& options() const { return options_; }
+  // The whole tool against the gate's own mesh, when it has one.
+  [[nodiscard]] const AssemblyClearance* assembly() const { return assembly_.get(); }
+
+  static constexpr double least_step_mm = 0.02;
 
 private:
-  MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord);
+  MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord,
+             std::unique_ptr<SurfaceMesh> tool_mesh);
   // The least distance from the mesh to the ball centre's sweep over the move, if under
   // `limit`; with where it is.
   [[nodiscard]] std::optional<MeshNearest> nearest(const cl::ClPose& from, const cl::ClPose& to,
                                                    double limit) const;
+  // The first measured pose of the move at which the tool assembly breaks a rule.
+  [[nodiscard]] std::optional<ClearanceViolation> sweep_assembly(const cl::ClPose& from,
+                                                                 const cl::ClPose& to);
+  [[nodiscard]] std::unexpected<Error> assembly_refusal(const cl::ClPose& pose,
+                                                        const ClearanceViolation& v) const;
+  // "the rapid from (x, y, z) to (x, y, z)", or the first pose's.
+  [[nodiscard]] std::string move_text(const cl::ClPose& pose) const;
   // The error for the move from the last pose to `pose`, which reaches `found`.
   [[nodiscard]] std::unexpected<Error> refusal(const cl::ClPose& pose,
                                                const MeshNearest& found) const;
@@ -75,6 +105,10 @@ private:
   GateOptions options_;
   std::unique_ptr<SurfaceMesh> mesh_; // held by pointer: the tree points into it
   std::unique_ptr<TriangleTree> tree_;
+  // The whole tool is measured on a coarser mesh of its own (chord 5 um).
+  std::unique_ptr<SurfaceMesh> tool_mesh_;
+  std::unique_ptr<TriangleTree> tool_tree_;
+  std::unique_ptr<AssemblyClearance> assembly_; // refers to tool_tree_
   std::optional<cl::ClPose> last_;
   GateReport report_;
 };

@@ -20,6 +20,8 @@ struct ReachRegion {
   double steepest_deg = 0.0; // the largest angle of a normal there from +Z
   long tilted = 0;           // vertices beyond the tilt limit
   long hidden = 0;           // vertices the withdrawing ball cannot leave
+  long collides = 0;         // vertices no tool axis keeps the whole tool clear at
+  long below_floor = 0;      // vertices the ball would reach only under the floor
 };
 
 // Largest area first.

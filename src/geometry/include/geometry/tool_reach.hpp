@@ -23,7 +23,9 @@
 
 namespace subfeed::geometry {
 
-enum class ReachLimit : char { reached = 0, tilt = 1, hidden = 2 };
+// collision: no tool axis within the limits keeps the holder, shank and flutes clear of the
+// part and the floor (clear_axes.hpp); floor: the ball itself would go under the stock.
+enum class ReachLimit : char { reached = 0, tilt = 1, hidden = 2, collision = 3, floor = 4 };
 
 struct ReachOptions {
   double ball_radius = 3.0;   // mm

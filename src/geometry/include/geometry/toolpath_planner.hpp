@@ -30,6 +30,8 @@
 #include "base/bounded_queue.hpp"
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
+#include "geometry/assembly_clearance.hpp"
+#include "geometry/clear_axes.hpp"
 #include "geometry/coarse_deformation.hpp"
 #include "geometry/deformation.hpp"
 #include "geometry/feed_direction.hpp"
@@ -104,6 +106,13 @@ struct PlanOptions {
   // the dome's passes along 45 degrees cut 14 % longer than the fine solve's; at 2, 5 %.
   int coarse_solve_from = 150'000;
   int coarse_factor = 2;
+  // The whole tool and the fixture (assembly_clearance.hpp): axes are turned clear of the
+  // part and the floor (clear_axes.hpp), what no axis clears is left uncut, and the gate
+  // holds every move to the same rules. Without whole_tool: the ball alone, no floor.
+  bool whole_tool = false;
+  ToolAssembly tool;
+  Fixture fixture;
+  bool floor_at_lowest = false; // the floor is the limit surface's lowest point (its mesh's)
 };
 
 struct PlanSummary {
@@ -125,6 +134,8 @@ struct PlanSummary {
   // normal's angle from +Z beyond which a point is out of reach.
   std::vector<ReachRegion> out_of_reach;
   double reach_angle_deg = 0.0;
+  ClearAxesReport clear_axes; // axes turned for the whole tool, and vertices it cannot clear
+  Fixture fixture;            // as planned: the floor found where it was the part's lowest point
   double min_interval = 0.0; // mm between planes, over the surface
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space
@@ -239,7 +250,6 @@ private:
   [[nodiscard]] Eigen::Vector3d vertex_axis(const Eigen::Vector3d& contact,
                                             const Eigen::Vector3d& normal,
                                             const PointGrid& triangles) const;
-  void set_axes(std::vector<PassPoint>& pass, const PointGrid& triangles) const;
   void smooth_axes(std::vector<PassPoint>& pass) const; // along the pass, within the tilt
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace subfeed::geometry {
@@ -30,6 +31,48 @@ public:
   // Each triangle that may lie within `radius` of p, once: every one that does, and a few
   // near ones that do not (pruned by boxes and cylinders, not measured).
   [[nodiscard]] std::vector<int> near(const Eigen::Vector3d& p, double radius) const;
+
+  // Branch and bound for any distance that is 1-Lipschitz in space: `lower(low, high)` must
+  // not exceed the least distance within the box [low, high]; nodes whose bound is not under
+  // `bound - slop(bound)` are skipped (slop: how far over the least the caller accepts), and
+  // `leaf(t, a, b, c)` is called for each triangle t left (corners a, b, c), and may lower
+  // `bound`.
+  template <class Lower, class Slop, class Leaf>
+  void search(double& bound, Lower&& lower, Slop&& slop, Leaf&& leaf) const {
+    if (nodes_.empty()) {
+      return;
+    }
+    // Each node with its bound; the nearer child is searched first, to tighten `bound`.
+    std::vector<std::pair<int, double>> stack{{0, lower(nodes_[0].low, nodes_[0].high)}};
+    while (!stack.empty()) {
+      const auto [index, below] = stack.back();
+      stack.pop_back();
+      if (below >= bound - slop(bound)) {
+        continue;
+      }
+      const auto& node = nodes_[static_cast<std::size_t>(index)];
+      if (node.left < 0) {
+        for (int i = node.first; i < node.first + node.count; ++i) {
+          const int t = order_[static_cast<std::size_t>(i)];
+          const auto& tri = (*triangles_)[static_cast<std::size_t>(t)];
+          leaf(t, (*points_)[static_cast<std::size_t>(tri[0])],
+               (*points_)[static_cast<std::size_t>(tri[1])],
+               (*points_)[static_cast<std::size_t>(tri[2])]);
+        }
+        continue;
+      }
+      const auto& l = nodes_[static_cast<std::size_t>(node.left)];
+      const auto& r = nodes_[static_cast<std::size_t>(node.right)];
+      const double lb = lower(l.low, l.high), rb = lower(r.low, r.high);
+      if (lb < rb) {
+        stack.emplace_back(node.right, rb);
+        stack.emplace_back(node.left, lb);
+      } else {
+        stack.emplace_back(node.left, lb);
+        stack.emplace_back(node.right, rb);
+      }
+    }
+  }
 
 private:
   struct Node {

@@ -1,6 +1,7 @@
 #pragma once
 // The motion gate (geometry/motion_gate.hpp) for CL data made elsewhere, which `run` and
-// `post --cage` pass every pose through: the cage's limit surface and the CL header's ball.
+// `post --cage` pass every pose through: the cage's limit surface and the CL header's ball,
+// and the whole tool and fixture where the header records them (PPRINT TOOL, FIXTURE).
 
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"

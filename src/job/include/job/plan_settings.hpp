@@ -7,6 +7,7 @@
 #include "geometry/toolpath_planner.hpp"
 
 #include <string>
+#include <vector>
 
 namespace subfeed::job {
 
@@ -30,6 +31,18 @@ struct PlanSettings {
   // The tool axis's largest angle from +Z, degrees; < 0: the machine's tilt range when a
   // machine is known (run), else 90.
   double max_tilt = -1.0;
+  // The tool above the ball (job/tool_spec.hpp): 0 or empty where not given.
+  double flute = 0.0;               // mm from the tip
+  double shank = 0.0;               // mm, diameter
+  double stickout = 0.0;            // mm from the tip to the holder's face
+  std::vector<std::string> holder;  // "D:L" or "D1:D2:L" per stage, bottom first
+  // The fixture: "none", a z in mm, or empty for the part's lowest point.
+  std::string floor;
+  double stock_margin = 0.0;                              // mm
+  double clearance_min = geometry::default_clearance_min; // mm
+  // False only for jobs recorded before the whole tool was checked: they re-plan as they
+  // were planned, the ball alone and no floor.
+  bool whole_tool = true;
 };
 
 // Checks what option parsing cannot (the scallop against the tool, the direction) and fills
