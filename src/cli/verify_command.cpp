@@ -76,11 +76,12 @@ Expected<void> report_whole_tool(const VerifyCommandOptions& o, const cl::ClHead
              "ball is measured");
     return {};
   }
-  SUBFEED_TRY_ASSIGN(const auto tool, parse_tool_record(radius, records.tool,
-                                                        {o.cl, static_cast<int>(records.tool_line), {}}));
-  SUBFEED_TRY_ASSIGN(const auto fixture,
-                     parse_fixture_record(records.fixture,
-                                          {o.cl, static_cast<int>(records.fixture_line), {}}));
+  SUBFEED_TRY_ASSIGN(
+      const auto tool,
+      parse_tool_record(radius, records.tool, {o.cl, static_cast<int>(records.tool_line), {}}));
+  SUBFEED_TRY_ASSIGN(
+      const auto fixture,
+      parse_fixture_record(records.fixture, {o.cl, static_cast<int>(records.fixture_line), {}}));
   SUBFEED_TRY_ASSIGN(const auto c, geometry::path_clearance(cage, surface, o.cl, tool, fixture));
   log.info(fmt::format("  whole tool: {}; floor {}, stock {:g} mm below it, clearance {:g} mm; "
                        "{} moves swept",
@@ -88,11 +89,11 @@ Expected<void> report_whole_tool(const VerifyCommandOptions& o, const cl::ClHead
                        fixture.floor_z ? fmt::format("z {:.3f} mm", *fixture.floor_z) : "none",
                        fixture.stock_margin, fixture.clearance_min, c.moves));
   for (const auto& b : c.bodies) {
-    std::string part = b.body == "ball" ? "cuts the part"
-                       : std::isfinite(b.to_part)
-                           ? fmt::format("{:.3f} mm from the part near {}", b.to_part,
-                                         point_text(b.part_point))
-                           : fmt::format("more than {:g} mm from the part", c.searched_mm);
+    std::string part =
+        b.body == "ball" ? "cuts the part"
+        : std::isfinite(b.to_part)
+            ? fmt::format("{:.3f} mm from the part near {}", b.to_part, point_text(b.part_point))
+            : fmt::format("more than {:g} mm from the part", c.searched_mm);
     std::string floor = std::isfinite(b.to_floor)
                             ? fmt::format("lowest {:.3f} mm above the floor (tip at {})",
                                           b.to_floor, point_text(b.floor_tip))
@@ -125,6 +126,15 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
   }
   options.sample_spacing = o.spacing;
   options.max_tilt_deg = o.max_tilt;
+  const auto& records = reader.header().whole_tool;
+  if (!records.fixture.empty()) {
+    SUBFEED_TRY_ASSIGN(
+        const auto fixture,
+        parse_fixture_record(records.fixture, {o.cl, static_cast<int>(records.fixture_line), {}}));
+    if (fixture.floor_z) {
+      options.ball_floor_z = *fixture.floor_z - fixture.stock_margin;
+    }
+  }
   options.name = std::filesystem::path(o.cage).filename().string();
   if (!o.svg.empty()) {
     options.svg = o.svg;
@@ -139,6 +149,11 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
     log.info(fmt::format("  out of reach: {:.1f} mm^2 whose normals lean more than {:g} deg from "
                          "+Z ({} samples), not measured for scallop",
                          r.out_of_reach_area, r.reach_angle_deg, r.out_of_reach_samples));
+  }
+  if (r.below_floor_samples > 0) {
+    log.info(fmt::format("  below the floor: {:.1f} mm^2 the ball would reach only under the "
+                         "floor less the stock margin ({} samples), not measured for scallop",
+                         r.below_floor_area, r.below_floor_samples));
   }
   report_uncut(r.uncut, log);
   log.info(fmt::format(

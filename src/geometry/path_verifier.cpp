@@ -1,5 +1,7 @@
 #include "geometry/path_verifier.hpp"
 
+#include "geometry/assembly_clearance.hpp"
+
 #include "geometry/closest_point.hpp"
 #include "geometry/point_grid.hpp"
 #include "geometry/scallop_meter.hpp"
@@ -15,6 +17,7 @@
 #include <cstdint>
 #include <fmt/format.h>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 
@@ -237,6 +240,7 @@ struct Sweeps {
   CapsuleGrid cuts, links, rapids;
   double reach_z; // a normal with less z than this is out of reach
   double r;
+  double ball_floor_z; // mm: a ball touching a sample may not reach under this
 };
 
 // Each sample stands for a third of the area of the triangles around it (taken on the
@@ -280,6 +284,12 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
   if (s.normal.z() < sweeps.reach_z) {
     ++report.out_of_reach_samples;
     report.out_of_reach_area += share;
+    return;
+  }
+  if ((s.point + r * s.normal).z() - r <
+      sweeps.ball_floor_z - AssemblyClearance::floor_tolerance_mm) {
+    ++report.below_floor_samples;
+    report.below_floor_area += share;
     return;
   }
   if (!std::isfinite(h.height)) {
@@ -338,6 +348,8 @@ void add_face(FaceMeasured& face, VerifyReport& report, std::vector<Measured>& k
   report.samples += r.samples;
   report.out_of_reach_samples += r.out_of_reach_samples;
   report.out_of_reach_area += r.out_of_reach_area;
+  report.below_floor_samples += r.below_floor_samples;
+  report.below_floor_area += r.below_floor_area;
   report.uncut_samples += r.uncut_samples;
   report.gouges += r.gouges;
   if (r.max_gouge > report.max_gouge) {
@@ -468,8 +480,12 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
   // A normal exactly at the limit (a vertical wall at 90) is in reach: rounding must not
   // take it out.
   const double reach_z = std::cos(report.reach_angle_deg * std::numbers::pi / 180.0) - 1e-9;
-  const Sweeps sweeps{CapsuleGrid(path.capsules, r, r), CapsuleGrid(path.links, r, r),
-                      CapsuleGrid(path.rapids, r, r), reach_z, r};
+  const Sweeps sweeps{CapsuleGrid(path.capsules, r, r),
+                      CapsuleGrid(path.links, r, r),
+                      CapsuleGrid(path.rapids, r, r),
+                      reach_z,
+                      r,
+                      options.ball_floor_z.value_or(-std::numeric_limits<double>::infinity())};
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, sweeps.cuts, r, {}};
   auto kept = measure_surface(surface, sweeps, m, spacing, report);

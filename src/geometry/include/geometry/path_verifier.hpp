@@ -35,6 +35,10 @@ struct VerifyOptions {
   // out of reach and are not measured for scallop (gouges and touches still are). A path
   // with a vertical tool (no MULTAX) reaches 90 degrees whatever this says.
   double max_tilt_deg = 90.0;
+  // The lowest the ball may go (the floor less the stock margin, assembly_clearance.hpp), mm:
+  // samples the ball could touch only from below it are out of reach too (the band round a
+  // part's foot), counted apart and not measured for scallop.
+  std::optional<double> ball_floor_z;
 };
 
 // Samples of the surface inside the ball's sweep over moves that must not cut.
@@ -51,6 +55,8 @@ struct VerifyReport {
   long out_of_reach_samples = 0;  // normals beyond the tilt: not measured for scallop
   double out_of_reach_area = 0.0; // mm^2
   double reach_angle_deg = 0.0;   // the normal's angle from +Z beyond which they are
+  long below_floor_samples = 0;   // the ball would touch them only under ball_floor_z
+  double below_floor_area = 0.0;  // mm^2
   double max_scallop = 0.0, mean_scallop = 0.0, p99_scallop = 0.0; // mm
   Eigen::Vector3d max_at = Eigen::Vector3d::Zero();                // where the worst scallop is, mm
   long gouges = 0;                                                 // of the cutting (feed) moves

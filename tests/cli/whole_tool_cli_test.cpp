@@ -1,0 +1,172 @@
+// The whole tool from the command line: `plan` with a shank, stick-out and holder keeps
+// them clear of the part and above the floor, records them in the CL data, and `verify`
+// and `post --cage` hold the path to what is recorded.
+
+#include "support/output_lines.hpp"
+#include "support/run_process.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_file.hpp"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using subfeed::testing::has_line;
+using subfeed::testing::has_line_matching;
+using subfeed::testing::line_captures;
+using subfeed::testing::run_process;
+using subfeed::testing::TempDir;
+
+namespace {
+
+const std::string bin = SUBFEED_BIN;
+const std::string source_dir = SUBFEED_SOURCE_DIR;
+
+// verify's line for `body`: its clearance to the part (infinity when farther than searched)
+// and its lowest point's height over the floor, mm.
+struct BodyLine {
+  double to_part = 0.0, over_floor = 0.0;
+};
+BodyLine body_line(const std::string& out, const std::string& body) {
+  const auto near = line_captures(out, "    " + body +
+                                           R"(: ([0-9.]+) mm from the part near \([-0-9., ]+\), )"
+                                           R"(lowest (-?[0-9.]+) mm above the floor.*)");
+  if (near.size() == 3) {
+    return {std::stod(near[1]), std::stod(near[2])};
+  }
+  const auto far = line_captures(out, "    " + body +
+                                          R"(: more than [0-9.]+ mm from the part, lowest )"
+                                          R"((-?[0-9.]+) mm above the floor.*)");
+  REQUIRE(far.size() == 2);
+  return {1e9, std::stod(far[1])};
+}
+
+double verified_max(const std::string& out) {
+  const auto got =
+      line_captures(out, R"(  scallop max ([0-9.]+) mm \(near -?[0-9.]+, -?[0-9.]+, )"
+                         R"(-?[0-9.]+\), mean [0-9.]+ mm, 99th percentile [0-9.]+ mm)");
+  return got.size() == 2 ? std::stod(got[1]) : 1e9;
+}
+
+// Plans `part` with the tool, verifies it, and checks every body keeps 0.5 mm from the part
+// and stays above the floor, and the scallop within 5 % of H where it is cut.
+void plan_and_verify_clear(const std::string& part, const std::vector<std::string>& tool,
+                           const std::vector<std::string>& bodies, double h) {
+  TempDir dir;
+  const auto cl = (dir.path() / "part.cl").string();
+  std::vector<std::string> plan{
+      bin, "plan", source_dir + "/examples/" + part, "--scallop", std::to_string(h), "-o", cl};
+  plan.insert(plan.end(), tool.begin(), tool.end());
+  const auto planned = run_process(plan);
+  INFO(planned.err);
+  REQUIRE(planned.exit_code == 0);
+  CHECK(has_line_matching(planned.out, R"(  tool: ball .*; floor z -?[0-9.]+ mm, stock 0 mm )"
+                                       R"(below it, clearance 0\.5 mm.*)"));
+  const auto text = subfeed::testing::read_text(cl);
+  CHECK(text.find("\nPPRINT TOOL flute=") != std::string::npos);
+  CHECK(text.find("\nPPRINT FIXTURE floor=") != std::string::npos);
+  const auto verified = run_process(
+      {bin, "verify", source_dir + "/examples/" + part, cl, "--tool", tool[1], "--spacing", "0.1"});
+  INFO(verified.out << verified.err);
+  REQUIRE(verified.exit_code == 0);
+  for (const auto& body : bodies) {
+    const auto line = body_line(verified.out, body);
+    INFO(body);
+    CHECK(line.to_part >= 0.5);
+    CHECK(line.over_floor >= 0.0);
+  }
+  const auto ball = line_captures(verified.out, R"(    ball: cuts the part, lowest (-?[0-9.]+) )"
+                                                R"(mm above the floor.*)");
+  REQUIRE(ball.size() == 2);
+  CHECK(std::stod(ball[1]) >= -0.001);
+  CHECK(verified_max(verified.out) <= 1.05 * h);
+}
+
+} // namespace
+
+TEST_CASE("the dome with a 32 mm holder on a 40 mm stick-out: every body clear, none under the "
+          "floor",
+          "[slow]") {
+  plan_and_verify_clear(
+      "dome.obj", {"--tool", "ball:6", "--shank", "6", "--stickout", "40", "--holder", "32:40"},
+      {"flutes", "shank", "holder 1"}, 0.05);
+}
+
+TEST_CASE("the seat with a 20 mm holder on a 20 mm stick-out: every body clear, none under the "
+          "floor",
+          "[slow]") {
+  plan_and_verify_clear(
+      "seat.obj", {"--tool", "ball:2", "--shank", "2", "--stickout", "20", "--holder", "20:30"},
+      {"flutes", "shank", "holder 1"}, 0.03);
+}
+
+TEST_CASE("a ball alone is planned with the default flutes, shank and stick-out, and says so") {
+  TempDir dir;
+  const auto cl = (dir.path() / "plane.cl").string();
+  const auto planned = run_process({bin, "plan", source_dir + "/examples/plane.obj", "--tool",
+                                    "ball:6", "--scallop", "0.05", "-o", cl});
+  REQUIRE(planned.exit_code == 0);
+  CHECK(has_line_matching(planned.out,
+                          R"(  tool: ball 6, flutes 18, shank 6, stick-out 24, no holder )"
+                          R"(\(defaults: flutes 3D, shank D, stick-out 4D; give --flute, --shank, )"
+                          R"(--stickout, --holder for the real tool\); floor z -?[0-9.]+ mm.*)"));
+  CHECK(subfeed::testing::read_text(cl).find(
+            "\nPPRINT TOOL flute=18 shank=6 stickout=24 holder=none\n") != std::string::npos);
+}
+
+TEST_CASE("a bad tool or fixture is one line naming the option, and nothing is written") {
+  TempDir dir;
+  const auto cl = (dir.path() / "x.cl").string();
+  const auto plan = [&](const std::vector<std::string>& more) {
+    std::vector<std::string> argv{bin,      "plan",   source_dir + "/examples/plane.obj",
+                                  "--tool", "ball:6", "--scallop",
+                                  "0.05",   "-o",     cl};
+    argv.insert(argv.end(), more.begin(), more.end());
+    return run_process(argv);
+  };
+  const auto holder = plan({"--holder", "32"});
+  CHECK(holder.exit_code == 1);
+  CHECK(holder.err == "subfeed: error: --holder: '32': expected D:L or D1:D2:L (diameters and "
+                      "length in mm, each above 0 and at most 10000)\n");
+  const auto stickout = plan({"--flute", "30", "--stickout", "20"});
+  CHECK(stickout.exit_code == 1);
+  CHECK(stickout.err == "subfeed: error: --stickout: the stick-out (20 mm) must be at least the "
+                        "flute length (30 mm)\n");
+  const auto floor = plan({"--floor", "low"});
+  CHECK(floor.exit_code == 1);
+  CHECK(floor.err == "subfeed: error: --floor: 'low': expected a height in mm, or none (no floor "
+                     "is checked)\n");
+  CHECK_FALSE(std::filesystem::exists(cl));
+}
+
+TEST_CASE("a path whose recorded holder would hit the floor is refused by post --cage and verify",
+          "[slow]") {
+  TempDir dir;
+  const auto cl = (dir.path() / "seat.cl").string();
+  const auto seat = source_dir + "/examples/seat.obj";
+  REQUIRE(run_process({bin, "plan", seat, "--tool", "ball:2", "--scallop", "0.05", "--stickout",
+                       "20", "--holder", "20:30", "-o", cl})
+              .exit_code == 0);
+  // The same path said to be held by a wide holder 6 mm above the tip.
+  auto text = subfeed::testing::read_text(cl);
+  const auto at = text.find("PPRINT TOOL ");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, text.find('\n', at) - at, "PPRINT TOOL flute=6 shank=2 stickout=6 holder=40:30");
+  const auto bad = (dir.path() / "bad.cl").string();
+  std::ofstream(bad, std::ios::binary) << text;
+  const auto nc = (dir.path() / "bad.nc").string();
+  const auto posted =
+      run_process({bin, "post", bad, "--machine", source_dir + "/configs/grblhal-xyzac-trt.toml",
+                   "--cage", seat, "-o", nc});
+  CHECK(posted.exit_code == 2);
+  CHECK(has_line_matching(posted.err,
+                          R"(subfeed: error: .*bad\.cl:\d+: tool path refused: .* takes the )"
+                          R"(holder 1 [0-9.]+ mm below the floor at .*)"));
+  CHECK_FALSE(std::filesystem::exists(nc));
+  const auto verified = run_process({bin, "verify", seat, bad, "--tool", "ball:2"});
+  CHECK(verified.exit_code == 2);
+  CHECK(has_line_matching(
+      verified.err, R"(subfeed: error: .*bad\.cl:\d+: the tool collides: \d+ measured poses )"
+                    R"(break the fixture's rules, .*holder 1 goes below its floor limit .*)"));
+}
