@@ -229,8 +229,9 @@ std::string gate_summary(const geometry::GateReport& gate) {
     std::string bodies;
     for (const auto& b : gate.clearance) {
       bodies += fmt::format("{}{} ", bodies.empty() ? "" : "; ", b.body);
-      bodies += b.body == "ball" ? "" : fmt::format("{} from the part, ",
-                                                         shown_distance(b.to_part, searched));
+      bodies += b.body == "ball"
+                    ? ""
+                    : fmt::format("{} from the part, ", shown_distance(b.to_part, searched));
       bodies += std::isfinite(b.to_floor) ? fmt::format("{:.3f} mm above the floor", b.to_floor)
                                           : std::string("no floor");
     }

@@ -18,8 +18,8 @@ void least_on_triangle(const F& f, const Slop& slop, const Eigen::Vector3d& a,
                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& bound,
                        Eigen::Vector3d& where) {
   const Eigen::Vector3d g = (a + b + c) / 3.0;
-  const double radius = std::sqrt(
-      std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
+  const double radius =
+      std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
   const double at = f(g);
   if (at < bound) {
     bound = at;
@@ -111,8 +111,8 @@ std::optional<ClearanceViolation> AssemblyClearance::violation(const Eigen::Vect
   return std::nullopt;
 }
 
-double AssemblyClearance::slack(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis,
-                                double cap, std::vector<BodyClearance>* into) const {
+double AssemblyClearance::slack(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, double cap,
+                                std::vector<BodyClearance>* into) const {
   return std::min(floor_slack(tip, axis, into), part_slack(tip, axis, cap, into));
 }
 

@@ -20,7 +20,8 @@ SweepFindings sweep_move(const AssemblyClearance& clearance, const Eigen::Vector
   const double turn = std::acos(std::clamp(a0.dot(a1), -1.0, 1.0));
   const int pieces = std::max(1, static_cast<int>(std::ceil(turn / piece_turn_rad)));
   // How far any point of the tool moves per unit of a piece's parameter, at most.
-  const double speed = (t1 - t0).norm() / pieces + blend_speed * turn / pieces * clearance.reach_mm();
+  const double speed =
+      (t1 - t0).norm() / pieces + blend_speed * turn / pieces * clearance.reach_mm();
   SweepFindings found;
   const auto sweep = [&](auto&& slack_at) {
     for (int k = 0; k < pieces; ++k) {
@@ -36,9 +37,8 @@ SweepFindings sweep_move(const AssemblyClearance& clearance, const Eigen::Vector
           if (!found.first) {
             // The same rules measured again, for where and how far; the slack stands if the
             // second search, bounded differently, lands just the other side of a rule.
-            found.first = clearance.violation(tip, axis)
-                              .value_or(ClearanceViolation{
-                                  "tool", false, clearance.fixture().clearance_min + slack, tip});
+            found.first = clearance.violation(tip, axis).value_or(
+                ClearanceViolation{"tool", false, clearance.fixture().clearance_min + slack, tip});
           }
           if (options.stop_at_first) {
             return;

@@ -86,9 +86,9 @@ Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& sur
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates, share));
   std::unique_ptr<SurfaceMesh> tool_mesh;
   if (options.whole_tool) {
-    SUBFEED_TRY_ASSIGN(auto coarse, mesh_surface(cage, surface,
-                                                 rates_for_tolerance(surface, tool_chord_mm,
-                                                                     most_segments)));
+    SUBFEED_TRY_ASSIGN(
+        auto coarse,
+        mesh_surface(cage, surface, rates_for_tolerance(surface, tool_chord_mm, most_segments)));
     tool_mesh = std::make_unique<SurfaceMesh>(std::move(coarse));
   }
   return MotionGate(options, std::make_unique<SurfaceMesh>(std::move(mesh)),
@@ -158,12 +158,12 @@ std::optional<ClearanceViolation> MotionGate::sweep_assembly(const cl::ClPose& f
 std::unexpected<Error> MotionGate::assembly_refusal(const cl::ClPose& pose,
                                                     const ClearanceViolation& v) const {
   const std::string what =
-      v.floor ? fmt::format("takes the {} {:.4f} mm below the {} at {}", v.body, v.distance,
-                            v.body == "ball" || v.body == "flutes" ? "stock's bottom" : "floor",
-                            point_text(v.where))
-              : fmt::format("brings the {} within {:.4f} mm of the part (at least {:g} mm) at {}",
-                            v.body, v.distance, options_.fixture.clearance_min,
-                            point_text(v.where));
+      v.floor
+          ? fmt::format("takes the {} {:.4f} mm below the {} at {}", v.body, v.distance,
+                        v.body == "ball" || v.body == "flutes" ? "stock's bottom" : "floor",
+                        point_text(v.where))
+          : fmt::format("brings the {} within {:.4f} mm of the part (at least {:g} mm) at {}",
+                        v.body, v.distance, options_.fixture.clearance_min, point_text(v.where));
   const std::string move = move_text(pose);
   return fail(ErrorCode::bad_input, fmt::format("tool path refused: {} {}", move, what),
               {{}, static_cast<int>(pose.line), {}});

@@ -19,9 +19,9 @@ constexpr int most_segments = 256;
 Expected<PathClearance> path_clearance(const Cage& cage, const LimitSurface& surface,
                                        const std::filesystem::path& cl_file,
                                        const ToolAssembly& tool, const Fixture& fixture) {
-  SUBFEED_TRY_ASSIGN(const auto mesh,
-                     mesh_surface(cage, surface,
-                                  rates_for_tolerance(surface, chord_mm, most_segments)));
+  SUBFEED_TRY_ASSIGN(
+      const auto mesh,
+      mesh_surface(cage, surface, rates_for_tolerance(surface, chord_mm, most_segments)));
   const TriangleTree tree(mesh.points, mesh.triangles);
   const AssemblyClearance clearance(tool, fixture, tree);
   SUBFEED_TRY_ASSIGN(auto reader, cl::ClReader::open(cl_file));

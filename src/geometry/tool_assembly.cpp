@@ -115,12 +115,11 @@ double body_distance(const ToolBody& body, const Eigen::Vector3d& tip, const Eig
     }
   }
   // Outside: the nearest of the three edges of the body's half-section (the axis is inside).
-  return std::min({segment_distance_2d(along, across, body.from_mm, 0.0, body.from_mm,
-                                       body.radius_from_mm),
-                   segment_distance_2d(along, across, body.to_mm, 0.0, body.to_mm,
-                                       body.radius_to_mm),
-                   segment_distance_2d(along, across, body.from_mm, body.radius_from_mm,
-                                       body.to_mm, body.radius_to_mm)});
+  return std::min(
+      {segment_distance_2d(along, across, body.from_mm, 0.0, body.from_mm, body.radius_from_mm),
+       segment_distance_2d(along, across, body.to_mm, 0.0, body.to_mm, body.radius_to_mm),
+       segment_distance_2d(along, across, body.from_mm, body.radius_from_mm, body.to_mm,
+                           body.radius_to_mm)});
 }
 
 Eigen::Vector3d body_lowest_point(const ToolBody& body, const Eigen::Vector3d& tip,

@@ -327,10 +327,9 @@ void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
   if (options_.whole_tool) {
     share.next_step();
     const AssemblyClearance clearance(options_.tool, options_.fixture, design);
-    summary_.clear_axes = clear_axes(mesh_, cl_points_, axes, tool_reach_, clearance,
-                                     {.max_tilt_deg = options_.max_tilt_deg,
-                                      .fixed_axis = options_.fixed_axis},
-                                     &share);
+    summary_.clear_axes = clear_axes(
+        mesh_, cl_points_, axes, tool_reach_, clearance,
+        {.max_tilt_deg = options_.max_tilt_deg, .fixed_axis = options_.fixed_axis}, &share);
   }
   for (int t = 0; t < mesh_.triangle_count(); ++t) {
     if (std::ranges::all_of(mesh_.triangles[static_cast<std::size_t>(t)], [&](int v) {

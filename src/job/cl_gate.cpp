@@ -22,9 +22,12 @@ Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_pat
   }
   SUBFEED_TRY_ASSIGN(auto cage, read_part_agreed(cage_path, setup, header.setup, cl_file));
   SUBFEED_TRY_ASSIGN(auto surface, geometry::LimitSurface::build(cage, level));
-  geometry::GateOptions options{
-      cutter.diameter / 2, tolerance_mm > 0.0 ? tolerance_mm : geometry::default_gate_tolerance,
-      false, {}, {}};
+  geometry::GateOptions options{cutter.diameter / 2,
+                                tolerance_mm > 0.0 ? tolerance_mm
+                                                   : geometry::default_gate_tolerance,
+                                false,
+                                {},
+                                {}};
   // The whole tool and the fixture, where the CL data records what it was planned for.
   const auto& records = header.whole_tool;
   if (!records.tool.empty() && !records.fixture.empty()) {

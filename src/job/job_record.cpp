@@ -219,21 +219,20 @@ std::string joined(const std::vector<std::string>& words) {
 
 std::string encode_job(const JobRecord& o) {
   const auto& p = o.plan;
-  return fmt::format("cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
-                     "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
-                     "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
-                     "gate_tolerance={} max_tilt={} whole_tool={} flute={} shank={} stickout={} "
-                     "holder={} floor={} stock_margin={} clearance_min={}{}",
-                     escape(o.cage), escape(o.machine),
-                     escape(job_files(o).nc.replace_extension().string()), escape(p.tool),
-                     number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
-                     number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
-                     number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level,
-                     p.refine, number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage),
-                     number(p.gate_tolerance), number(p.max_tilt), p.whole_tool ? 1 : 0,
-                     number(p.flute), number(p.shank), number(p.stickout),
-                     escape(joined(p.holder)), escape(p.floor),
-                     number(p.stock_margin), number(p.clearance_min), setup_fields(o.setup));
+  return fmt::format(
+      "cage={} machine={} output={} tool={} scallop={} direction={} baseline={} "
+      "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
+      "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
+      "gate_tolerance={} max_tilt={} whole_tool={} flute={} shank={} stickout={} "
+      "holder={} floor={} stock_margin={} clearance_min={}{}",
+      escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
+      escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
+      number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
+      number(p.plunge_feed), number(p.clearance), number(p.tolerance), p.level, p.refine,
+      number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance),
+      number(p.max_tilt), p.whole_tool ? 1 : 0, number(p.flute), number(p.shank),
+      number(p.stickout), escape(joined(p.holder)), escape(p.floor), number(p.stock_margin),
+      number(p.clearance_min), setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {

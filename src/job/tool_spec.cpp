@@ -91,8 +91,9 @@ Expected<geometry::ToolAssembly> tool_assembly_from(const PlanSettings& o) {
       const auto stage = holder_stage(text);
       if (!stage) {
         return fail(ErrorCode::usage,
-                    "'" + text + "': expected D:L or D1:D2:L (diameters and length in mm, each "
-                                 "above 0 and at most 10000)",
+                    "'" + text +
+                        "': expected D:L or D1:D2:L (diameters and length in mm, each "
+                        "above 0 and at most 10000)",
                     {{}, 0, "--holder"});
       }
       tool.holder.push_back(*stage);
@@ -177,12 +178,11 @@ Expected<geometry::Fixture> parse_fixture_record(std::string_view text, const Wh
   const auto floor = fields.find("floor");
   const auto margin = fields.find("margin");
   const auto clearance = fields.find("clearance");
-  const double m =
-      margin == fields.end() ? -1.0 : parse_double(margin->second).value_or(-1.0);
+  const double m = margin == fields.end() ? -1.0 : parse_double(margin->second).value_or(-1.0);
   const double c =
       clearance == fields.end() ? -1.0 : parse_double(clearance->second).value_or(-1.0);
-  const auto z = floor == fields.end() || floor->second == "none" ? std::nullopt
-                                                                    : parse_double(floor->second);
+  const auto z =
+      floor == fields.end() || floor->second == "none" ? std::nullopt : parse_double(floor->second);
   if (floor == fields.end() || (floor->second != "none" && !z) || m < 0.0 || c < 0.0) {
     return fail(ErrorCode::bad_input,
                 "PPRINT FIXTURE needs floor= (mm or none), margin= and clearance= (mm, at least 0)",

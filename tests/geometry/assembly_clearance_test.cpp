@@ -149,16 +149,15 @@ TEST_CASE("beside a sphere each body's clearance is its distance to the centre l
         // the normal toward the pole.
         const Eigen::Vector3d n = tilted(at, 30.0);
         const Eigen::Vector3d toward_pole = (Eigen::Vector3d::UnitZ() - n.z() * n).normalized();
-        const Eigen::Vector3d axis =
-            std::cos(lean * deg) * n + std::sin(lean * deg) * toward_pole;
+        const Eigen::Vector3d axis = std::cos(lean * deg) * n + std::sin(lean * deg) * toward_pole;
         const Eigen::Vector3d tip = (radius + r) * n - r * axis;
         auto into = clearance.blank();
         (void)clearance.slack(tip, axis, 5.0, &into);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
           const double exact =
               geometry::body_distance(bodies[i], tip, axis, Eigen::Vector3d::Zero()) - radius;
-          INFO("r " << r << " lean " << lean << " at " << at << " " << bodies[i].name
-                    << " exact " << exact);
+          INFO("r " << r << " lean " << lean << " at " << at << " " << bodies[i].name << " exact "
+                    << exact);
           if (exact <= 0.0) {
             CHECK(into[i + 1].to_part <= chord + 1e-9); // the body is in the sphere
           } else if (exact < 0.5) {

@@ -10,8 +10,8 @@
 #include "geometry/surface_mesh.hpp"
 #include "geometry/toolpath_planner.hpp"
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -160,8 +160,7 @@ TEST_CASE("a pocket the holder cannot enter has its floor left uncut and reporte
   CHECK(std::abs(region.centroid.x()) < 2.0);
   CHECK(std::abs(region.centroid.y()) < 2.0);
   CHECK(region.low.z() < -8.0);
-  const auto deep_measured =
-      measure(cage, *surface, tool, deep.summary.fixture, deep.poses);
+  const auto deep_measured = measure(cage, *surface, tool, deep.summary.fixture, deep.poses);
   INFO("least clearance " << deep_measured.to_part << " mm, floor margin "
                           << deep_measured.under_floor << " mm");
   CHECK(deep_measured.to_part >= 0.5 - 0.02);
@@ -201,6 +200,6 @@ TEST_CASE("walls too steep for a straight tool are cut with the axis turned clea
   const double turned_step = largest_axis_step(planned.poses);
   const double normal_step = largest_axis_step(normal_only.poses);
   INFO("largest axis step between feed poses: " << turned_step << " deg turned clear, "
-                                               << normal_step << " deg along the normals");
+                                                << normal_step << " deg along the normals");
   CHECK(turned_step <= normal_step + 2.0); // measured 5.5 against 4.1 deg
 }

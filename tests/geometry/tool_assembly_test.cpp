@@ -114,14 +114,14 @@ TEST_CASE("a body's distance to a point is the section's distance, over cylinder
       const Eigen::Vector3d tip(1.0, -2.0, 0.5);
       const Eigen::Vector3d axis = tilted_axis(tilt, 60.0);
       for (int i = 0; i < 40; ++i) {
-        const Eigen::Vector3d p = tip + 40.0 * Eigen::Vector3d(unit(random), unit(random),
-                                                               unit(random)) +
+        const Eigen::Vector3d p = tip +
+                                  40.0 * Eigen::Vector3d(unit(random), unit(random), unit(random)) +
                                   (body.from_mm + 10.0) * axis;
         const double exact = geometry::body_distance(body, tip, axis, p);
         // The grid's points lie within half a cell of every point of the section.
-        const double cell = std::max(body.to_mm - body.from_mm,
-                                     std::max(body.radius_from_mm, body.radius_to_mm)) /
-                            400.0;
+        const double cell =
+            std::max(body.to_mm - body.from_mm, std::max(body.radius_from_mm, body.radius_to_mm)) /
+            400.0;
         const double grid = grid_distance(body, tip, axis, p, 400);
         INFO(body.name << " tilt " << tilt << " point " << p.transpose());
         CHECK(exact <= grid + 1e-9);

@@ -87,13 +87,12 @@ TEST_CASE("the CL reader gives poses with kind, feed and source line") {
 TEST_CASE("what the CL writer writes the reader reads back to a nanometre") {
   TempDir dir;
   const auto path = dir.path() / "w.cl";
-  auto writer = cl::ClWriter::create(
-      path, {"ROUND TRIP",
-             {6.0, 3.0},
-             true,
-             "up=y scale=10 origin=top-centre",
-             {"flute=18 shank=6 stickout=40 holder=32:40", "floor=-1.5 margin=0 clearance=0.5", 0,
-              0}});
+  auto writer = cl::ClWriter::create(path, {"ROUND TRIP",
+                                            {6.0, 3.0},
+                                            true,
+                                            "up=y scale=10 origin=top-centre",
+                                            {"flute=18 shank=6 stickout=40 holder=32:40",
+                                             "floor=-1.5 margin=0 clearance=0.5", 0, 0}});
   REQUIRE(writer);
   std::vector<cl::ClPose> written;
   for (int i = 0; i < 50; ++i) {

@@ -37,7 +37,7 @@ struct Fixture {
 // One body's least clearance over the poses measured.
 struct BodyClearance {
   std::string body; // "ball", "flutes", "shank", "holder 1", ...
-  double to_part = std::numeric_limits<double>::infinity(); // mm (the ball: not measured)
+  double to_part = std::numeric_limits<double>::infinity();  // mm (the ball: not measured)
   Eigen::Vector3d part_point = Eigen::Vector3d::Zero();      // the part's point nearest it
   double to_floor = std::numeric_limits<double>::infinity(); // mm above the floor; < 0 below
   Eigen::Vector3d floor_tip = Eigen::Vector3d::Zero();       // the tip where it was lowest

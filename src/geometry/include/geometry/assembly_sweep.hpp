@@ -20,9 +20,9 @@
 namespace subfeed::geometry {
 
 struct SweepOptions {
-  double cap_mm = 1.0;          // slack searched for at a pose (AssemblyClearance::slack)
-  double least_step_mm = 0.02;  // the shortest step along the move
-  bool stop_at_first = true;    // false: measure on past broken rules (verify)
+  double cap_mm = 1.0;         // slack searched for at a pose (AssemblyClearance::slack)
+  double least_step_mm = 0.02; // the shortest step along the move
+  bool stop_at_first = true;   // false: measure on past broken rules (verify)
 };
 
 struct SweepFindings {

@@ -33,9 +33,9 @@ namespace subfeed::geometry {
 
 struct ClearAxesOptions {
   double max_tilt_deg = 90.0;
-  bool fixed_axis = false;    // three axes: nothing to turn; a collision is only reported
-  double extra_mm = 0.2;      // asked beyond clearance_min, so blends between vertices hold
-  double step_deg = 3.0;      // of the search's turn
+  bool fixed_axis = false;     // three axes: nothing to turn; a collision is only reported
+  double extra_mm = 0.2;       // asked beyond clearance_min, so blends between vertices hold
+  double step_deg = 3.0;       // of the search's turn
   double most_turn_deg = 75.0; // from the planner's axis
   int azimuths = 16;
   double ramp_deg_per_mm = 2.0;
@@ -47,9 +47,9 @@ struct ClearAxesOptions {
 };
 
 struct ClearAxesReport {
-  long turned = 0;    // vertices whose axis the search turned
-  long spread = 0;    // further vertices turned by the ramp round them
-  long collided = 0;  // vertices with no clear axis
+  long turned = 0;   // vertices whose axis the search turned
+  long spread = 0;   // further vertices turned by the ramp round them
+  long collided = 0; // vertices with no clear axis
   long under_floor = 0;
   double largest_turn_deg = 0.0;
 };

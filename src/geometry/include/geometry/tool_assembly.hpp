@@ -31,10 +31,10 @@ struct ToolBody {
 };
 
 struct ToolAssembly {
-  double ball_radius = 3.0;    // mm
-  double flute_length = 0.0;   // mm from the tip, the ball included
-  double shank_diameter = 0.0; // mm
-  double stickout = 0.0;       // mm from the tip to the holder's face
+  double ball_radius = 3.0;        // mm
+  double flute_length = 0.0;       // mm from the tip, the ball included
+  double shank_diameter = 0.0;     // mm
+  double stickout = 0.0;           // mm from the tip to the holder's face
   std::vector<HolderStage> holder; // bottom first; empty: no holder is known
   bool defaulted = false;          // flute, shank and stick-out were not given: 3D, D, 4D
 

@@ -136,7 +136,7 @@ struct PlanSummary {
   double reach_angle_deg = 0.0;
   ClearAxesReport clear_axes; // axes turned for the whole tool, and vertices it cannot clear
   Fixture fixture;            // as planned: the floor found where it was the part's lowest point
-  double min_interval = 0.0; // mm between planes, over the surface
+  double min_interval = 0.0;  // mm between planes, over the surface
   double max_interval = 0.0;
   double reference = 0.0; // plane spacing in deformed space
   int solves = 0;

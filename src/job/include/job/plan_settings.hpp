@@ -32,10 +32,10 @@ struct PlanSettings {
   // machine is known (run), else 90.
   double max_tilt = -1.0;
   // The tool above the ball (job/tool_spec.hpp): 0 or empty where not given.
-  double flute = 0.0;               // mm from the tip
-  double shank = 0.0;               // mm, diameter
-  double stickout = 0.0;            // mm from the tip to the holder's face
-  std::vector<std::string> holder;  // "D:L" or "D1:D2:L" per stage, bottom first
+  double flute = 0.0;              // mm from the tip
+  double shank = 0.0;              // mm, diameter
+  double stickout = 0.0;           // mm from the tip to the holder's face
+  std::vector<std::string> holder; // "D:L" or "D1:D2:L" per stage, bottom first
   // The fixture: "none", a z in mm, or empty for the part's lowest point.
   std::string floor;
   double stock_margin = 0.0;                              // mm

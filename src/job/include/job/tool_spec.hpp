@@ -10,9 +10,9 @@
 
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
-#include "geometry/toolpath_planner.hpp"
 #include "geometry/assembly_clearance.hpp"
 #include "geometry/tool_assembly.hpp"
+#include "geometry/toolpath_planner.hpp"
 #include "job/plan_settings.hpp"
 
 #include <optional>
