@@ -2,7 +2,7 @@
 // and the path length of every sample part against the ideal bound L* and the iso-planar
 // baseline. Baselines: meshing the limit surface alone (the floor any planner pays), the
 // baseline planner's point rate, the memory of the mesh alone, and `--baseline` paths; the
-// motion gate against the rest of the plan.
+// motion gate against the rest of the plan; the whole tool against the ball alone.
 
 #include "bench_harness.hpp"
 #include "wavy_cage.hpp"
@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <sstream>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace {
@@ -40,12 +41,17 @@ struct PlanRun {
 
 PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, double radius,
              double scallop, bool baseline, const std::filesystem::path& out,
-             bool choose_direction = false) {
+             bool choose_direction = false, const geometry::ToolAssembly* tool = nullptr) {
   geometry::PlanOptions options;
   options.ball_radius = radius;
   options.scallop = scallop;
   options.baseline = baseline;
   options.choose_direction = choose_direction;
+  if (tool != nullptr) {
+    options.whole_tool = true;
+    options.tool = *tool;
+    options.floor_at_lowest = true;
+  }
   PlanRun run;
   run.seconds = bench::best_seconds(1, [&] {
     auto planner = geometry::ToolpathPlanner::prepare(cage, surface, options).value();
@@ -168,6 +174,62 @@ void bench_gate(const std::filesystem::path& dir) {
   }
 }
 
+// The peak resident memory of `work` run in a child process of its own, MiB: each plan's
+// peak apart, where one process's peak would only ever grow.
+template <class Work> double child_peak_mib(Work&& work) {
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    return 0.0;
+  }
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(fds[0]);
+    work();
+    const double peak = bench::peak_rss_mib();
+    (void)!::write(fds[1], &peak, sizeof peak);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  double peak = 0.0;
+  (void)!::read(fds[0], &peak, sizeof peak);
+  ::close(fds[0]);
+  ::waitpid(child, nullptr, 0);
+  return peak;
+}
+
+// The whole tool (a 6 mm ball on a 6 mm shank, 40 mm out of a 32 mm holder, the floor at
+// the part's lowest point): plan time and peak memory against the same plan of the ball
+// alone.
+void bench_whole_tool(const std::filesystem::path& dir) {
+  struct Part {
+    std::string name;
+    geometry::Cage cage;
+    double scallop;
+  };
+  std::vector<Part> parts;
+  parts.push_back({"wavy 1,024 faces", wavy_cage(33), 0.01});
+  parts.push_back(
+      {"dome", geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/dome.obj").value(),
+       0.01});
+  const geometry::ToolAssembly tool{
+      .ball_radius = 3, .flute_length = 18, .shank_diameter = 6, .stickout = 40,
+      .holder = {{32, 32, 40}}};
+  for (const auto& part : parts) {
+    const auto surface = geometry::LimitSurface::build(part.cage).value();
+    const auto file = dir / "tool.cl";
+    const auto ball = plan(part.cage, surface, 3.0, part.scallop, false, file);
+    const auto whole = plan(part.cage, surface, 3.0, part.scallop, false, file, false, &tool);
+    bench::report({fmt::format("whole tool, {} H {}", part.name, part.scallop), whole.seconds,
+                   "s", "the ball alone", ball.seconds, false});
+    const double ball_peak = child_peak_mib(
+        [&] { (void)plan(part.cage, surface, 3.0, part.scallop, false, file); });
+    const double whole_peak = child_peak_mib(
+        [&] { (void)plan(part.cage, surface, 3.0, part.scallop, false, file, false, &tool); });
+    bench::report({fmt::format("whole tool peak, {}", part.name), whole_peak, "MiB",
+                   "the ball alone", ball_peak, false});
+  }
+}
+
 } // namespace
 
 int main() {
@@ -176,6 +238,7 @@ int main() {
   std::filesystem::create_directories(dir);
   bench_memory(dir); // first, so the peak it reads is its own
   bench_gate(dir);
+  bench_whole_tool(dir);
   bench_plan_scaling(dir);
   bench_path_lengths(dir);
   std::filesystem::remove_all(dir);
