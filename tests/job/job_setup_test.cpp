@@ -119,3 +119,42 @@ TEST_CASE("a job record keeps the tilt said, and reads an older record as not sa
   REQUIRE(older);
   CHECK(older->plan.max_tilt == -1.0);
 }
+
+TEST_CASE("a job record keeps the whole tool and fixture, and reads an older record as the "
+          "ball alone") {
+  auto job = job_with({});
+  job.plan.flute = 18;
+  job.plan.shank = 6;
+  job.plan.stickout = 40;
+  job.plan.holder = {"32:40", "40:20:10"};
+  job.plan.floor = "-1.25";
+  job.plan.stock_margin = 2;
+  job.plan.clearance_min = 0.75;
+  const auto back = decode_job(encode_job(job), {"j.journal", 0, "job"});
+  REQUIRE(back);
+  CHECK(back->plan.whole_tool);
+  CHECK(back->plan.flute == 18);
+  CHECK(back->plan.shank == 6);
+  CHECK(back->plan.stickout == 40);
+  CHECK(back->plan.holder == std::vector<std::string>{"32:40", "40:20:10"});
+  CHECK(back->plan.floor == "-1.25");
+  CHECK(back->plan.stock_margin == 2);
+  CHECK(back->plan.clearance_min == 0.75);
+  // The defaults (no holder, the floor at the part's lowest point) read back as said.
+  const auto plain = decode_job(encode_job(job_with({})), {"j.journal", 0, "job"});
+  REQUIRE(plain);
+  CHECK(plain->plan.whole_tool);
+  CHECK(plain->plan.holder.empty());
+  CHECK(plain->plan.floor.empty());
+  // A record from before the whole tool re-plans as it was planned.
+  auto text = encode_job(job);
+  const auto at = text.find(" whole_tool=");
+  REQUIRE(at != std::string::npos);
+  text.erase(at, text.find(' ', at + 1) - at);
+  const auto older = decode_job(text, {"j.journal", 0, "job"});
+  REQUIRE(older);
+  CHECK_FALSE(older->plan.whole_tool);
+  const auto options = plan_options_from(older->plan);
+  REQUIRE(options);
+  CHECK_FALSE(options->whole_tool);
+}
