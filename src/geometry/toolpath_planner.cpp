@@ -27,6 +27,9 @@ constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along 
 // mm a pass point keeps beyond the fixture's clearance_min: the move to the next point blends
 // the two poses, and the gate holds the blend to clearance_min.
 constexpr double pass_clearance_extra = 0.05;
+// mm the ball's bottom keeps over the lowest it may go on the pass along the floor band's
+// edge: twice the floor's tolerance, against rounding.
+constexpr double floor_limit_above_mm = 2e-3;
 // The longest mesh cell, in flat step-overs (see prepare).
 constexpr double reach_cells = 2.0;
 // The front's marches after the first (concentric_field.hpp): the third settles the
@@ -759,6 +762,54 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::floor_limit_passes(const TriangleTree& design) {
+  std::vector<std::vector<PassPoint>> passes;
+  if (!options_.fixture.floor_z ||
+      std::ranges::find(tool_reach_, ReachLimit::floor) == tool_reach_.end()) {
+    return passes;
+  }
+  // The ball's bottom over the lowest it may go, per vertex: linear along every edge, as the
+  // ball centres are, so its level set is the band's exact edge.
+  const double lowest = *options_.fixture.floor_z - options_.fixture.stock_margin;
+  std::vector<double> over(mesh_.points.size());
+  for (std::size_t v = 0; v < over.size(); ++v) {
+    over[v] = cl_points_[v].z() - options_.ball_radius - lowest;
+  }
+  // The triangles the level crosses, with no corner out of reach for another reason.
+  std::vector<std::array<int, 3>> between;
+  for (const auto& t : mesh_.triangles) {
+    const auto value = [&](int k) { return over[std::size_t(t[std::size_t(k)])]; };
+    const double low = std::min({value(0), value(1), value(2)});
+    const double high = std::max({value(0), value(1), value(2)});
+    if (low < floor_limit_above_mm && high > floor_limit_above_mm &&
+        std::ranges::all_of(t, [&](int v) {
+          const auto r = tool_reach_[std::size_t(v)];
+          return r == ReachLimit::reached || r == ReachLimit::floor;
+        })) {
+      between.push_back(t);
+    }
+  }
+  MeshSlicer slicer(between, over);
+  for (const auto& line : slicer.slice(floor_limit_above_mm)) {
+    std::vector<PassPoint> pass;
+    for (const auto& e : line) {
+      const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
+      // The axis of the end in reach: the other end's was never cleared for the whole tool.
+      const auto kept = tool_reach_[a] == ReachLimit::reached ? a : b;
+      pass.push_back({(1 - e.t) * cl_points_[a] + e.t * cl_points_[b],
+                      (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b],
+                      ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized(),
+                      vertex_axes_[kept]});
+    }
+    if (pass.size() >= 2) {
+      clear_pass(pass, design);
+      passes.push_back(std::move(pass));
+    }
+  }
+  return passes;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& design) const {
   std::vector<std::vector<PassPoint>> pieces;
   if (!any_hidden_ && !options_.whole_tool) {
@@ -904,6 +955,14 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
   for (auto& whole : boundary_passes(cut, design)) {
+    smooth_axes(whole);
+    for (const auto& pass : within_reach(std::move(whole), design)) {
+      SUBFEED_TRY(emit_pass(pass, sink, design));
+    }
+  }
+  // And one along the exact edge of the band round the foot the ball reaches only below the
+  // floor: the cut triangles end up to a mesh cell short of it.
+  for (auto& whole : floor_limit_passes(design)) {
     smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {
       SUBFEED_TRY(emit_pass(pass, sink, design));

@@ -212,6 +212,10 @@ private:
   [[nodiscard]] std::vector<unsigned char> depth_cut() const;
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   boundary_passes(const std::vector<std::array<int, 3>>& triangles, const TriangleTree& design);
+  // Passes along the exact edge of the band the ball reaches only below the floor (where
+  // its bottom meets the floor less the stock margin), sliced across the triangles between
+  // the band and what is cut; none without a floor.
+  [[nodiscard]] std::vector<std::vector<PassPoint>> floor_limit_passes(const TriangleTree& design);
   // The pieces of `pass` whose every point the ball can be withdrawn from (tool_reach.hpp).
   [[nodiscard]] std::vector<std::vector<PassPoint>> within_reach(std::vector<PassPoint> pass,
                                                                  const TriangleTree& design) const;
