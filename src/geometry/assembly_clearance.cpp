@@ -14,9 +14,9 @@ namespace {
 // slop. Where f is nearly even (a face parallel to the part) only the slop ends the split:
 // to a fixed 10 um that cost a hundred times more, so far from the rule it grows.
 template <class F, class Slop>
-void least_on_triangle(const F& f, const Slop& slop, const Eigen::Vector3d& a,
-                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& bound,
-                       Eigen::Vector3d& where) {
+void least_over_triangle(const F& f, const Slop& slop, const Eigen::Vector3d& a,
+                         const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& bound,
+                         Eigen::Vector3d& where) {
   const Eigen::Vector3d g = (a + b + c) / 3.0;
   const double radius =
       std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
@@ -30,10 +30,10 @@ void least_on_triangle(const F& f, const Slop& slop, const Eigen::Vector3d& a,
     return;
   }
   const Eigen::Vector3d ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-  least_on_triangle(f, slop, a, ab, ca, bound, where);
-  least_on_triangle(f, slop, ab, b, bc, bound, where);
-  least_on_triangle(f, slop, ca, bc, c, bound, where);
-  least_on_triangle(f, slop, ab, bc, ca, bound, where);
+  least_over_triangle(f, slop, a, ab, ca, bound, where);
+  least_over_triangle(f, slop, ab, b, bc, bound, where);
+  least_over_triangle(f, slop, ca, bc, c, bound, where);
+  least_over_triangle(f, slop, ab, bc, ca, bound, where);
 }
 
 } // namespace
@@ -70,7 +70,7 @@ double AssemblyClearance::to_part(const ToolBody& body, const Eigen::Vector3d& t
       },
       slop,
       [&](int, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-        least_on_triangle(f, slop, a, b, c, bound, at);
+        least_over_triangle(f, slop, a, b, c, bound, at);
       });
   if (where != nullptr) {
     *where = at;

@@ -8,8 +8,8 @@ namespace subfeed::geometry {
 
 namespace {
 
-constexpr double piece_turn_rad = 10.0 * std::numbers::pi / 180.0;
-constexpr double blend_speed = 1.008; // 1 / cos^2(5 deg)
+constexpr double sweep_piece_turn_rad = 10.0 * std::numbers::pi / 180.0;
+constexpr double sweep_blend_speed = 1.008; // 1 / cos^2(5 deg)
 
 } // namespace
 
@@ -18,10 +18,10 @@ SweepFindings sweep_move(const AssemblyClearance& clearance, const Eigen::Vector
                          const Eigen::Vector3d& a1, const SweepOptions& options,
                          std::vector<BodyClearance>* into) {
   const double turn = std::acos(std::clamp(a0.dot(a1), -1.0, 1.0));
-  const int pieces = std::max(1, static_cast<int>(std::ceil(turn / piece_turn_rad)));
+  const int pieces = std::max(1, static_cast<int>(std::ceil(turn / sweep_piece_turn_rad)));
   // How far any point of the tool moves per unit of a piece's parameter, at most.
   const double speed =
-      (t1 - t0).norm() / pieces + blend_speed * turn / pieces * clearance.reach_mm();
+      (t1 - t0).norm() / pieces + sweep_blend_speed * turn / pieces * clearance.reach_mm();
   SweepFindings found;
   const auto sweep = [&](auto&& slack_at) {
     for (int k = 0; k < pieces; ++k) {

@@ -15,13 +15,13 @@ namespace subfeed::geometry {
 
 namespace {
 
-constexpr double deg = std::numbers::pi / 180.0;
+constexpr double rad_per_deg = std::numbers::pi / 180.0;
 // The contact stays this far below the ball's equator: a·n at least cos 80 degrees.
-const double least_contact_cos = std::cos(80.0 * deg);
+const double least_contact_cos_80 = std::cos(80.0 * rad_per_deg);
 
 // `a` turned by `angle` about `about` (unit), which need not be square to it: only its part
 // square to `a` turns it.
-Eigen::Vector3d turned(const Eigen::Vector3d& a, const Eigen::Vector3d& about, double angle) {
+Eigen::Vector3d turned_about(const Eigen::Vector3d& a, const Eigen::Vector3d& about, double angle) {
   const Eigen::Vector3d k = about - about.dot(a) * a;
   if (k.norm() < 1e-12 || angle == 0.0) {
     return a;
@@ -30,27 +30,27 @@ Eigen::Vector3d turned(const Eigen::Vector3d& a, const Eigen::Vector3d& about, d
 }
 
 // A unit vector square to `a`.
-Eigen::Vector3d square_to(const Eigen::Vector3d& a) {
+Eigen::Vector3d square_to_axis(const Eigen::Vector3d& a) {
   const Eigen::Vector3d other =
       std::abs(a.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
   return a.cross(other).normalized();
 }
 
-constexpr int coarse_stride = 3; // steps of the coarse search's turns
+constexpr int coarse_turn_stride = 3; // steps of the coarse search's turns
 
-struct Turn {
+struct AxisTurn {
   double angle = 0.0; // radians
   Eigen::Vector3d about = Eigen::Vector3d::Zero();
 };
 
 // Each vertex's neighbours along the mesh's edges, packed.
-struct Neighbours {
+struct EdgeNeighbours {
   std::vector<int> start, vertices;
 };
 
-Neighbours neighbours(const SurfaceMesh& mesh) {
+EdgeNeighbours edge_neighbours(const SurfaceMesh& mesh) {
   const auto edges = mesh_edges(mesh.triangles);
-  Neighbours n;
+  EdgeNeighbours n;
   n.start.assign(mesh.points.size() + 1, 0);
   for (const auto& e : edges) {
     ++n.start[static_cast<std::size_t>(e.a) + 1];
@@ -72,10 +72,10 @@ class AxisSearch {
 public:
   AxisSearch(const AssemblyClearance& clearance, const ClearAxesOptions& options)
       : clearance_(clearance), options_(options), r_(clearance.tool().ball_radius),
-        least_z_(std::cos(options.max_tilt_deg * deg)) {}
+        least_z_(std::cos(options.max_tilt_deg * rad_per_deg)) {}
 
   [[nodiscard]] bool allowed(const Eigen::Vector3d& axis, const Eigen::Vector3d& normal) const {
-    return axis.z() >= least_z_ - 1e-12 && axis.dot(normal) >= least_contact_cos;
+    return axis.z() >= least_z_ - 1e-12 && axis.dot(normal) >= least_contact_cos_80;
   }
   [[nodiscard]] bool clear(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis) const {
     return clearance_.clear(centre - r_ * axis, axis, options_.extra_mm);
@@ -84,21 +84,21 @@ public:
   // turns (every third step, half the directions; a vertex with no clear axis, the costly
   // case, costs a sixth of the full grid), then on the full grid below and round the first
   // coarse turn found.
-  [[nodiscard]] std::optional<Turn> nearest(const Eigen::Vector3d& centre,
-                                            const Eigen::Vector3d& normal,
-                                            const Eigen::Vector3d& axis) const {
+  [[nodiscard]] std::optional<AxisTurn> nearest(const Eigen::Vector3d& centre,
+                                                const Eigen::Vector3d& normal,
+                                                const Eigen::Vector3d& axis) const {
     const int most = static_cast<int>(std::floor(options_.most_turn_deg / options_.step_deg));
-    std::optional<Turn> coarse;
+    std::optional<AxisTurn> coarse;
     int found_step = 0;
-    for (int step = coarse_stride; step <= most + coarse_stride - 1 && !coarse;
-         step += coarse_stride) {
+    for (int step = coarse_turn_stride; step <= most + coarse_turn_stride - 1 && !coarse;
+         step += coarse_turn_stride) {
       found_step = std::min(step, most);
       coarse = best_at(centre, normal, axis, found_step, 2);
     }
     if (!coarse) {
       return std::nullopt;
     }
-    for (int step = std::max(1, found_step - coarse_stride + 1); step < found_step; ++step) {
+    for (int step = std::max(1, found_step - coarse_turn_stride + 1); step < found_step; ++step) {
       if (auto finer = best_at(centre, normal, axis, step, 1)) {
         return finer;
       }
@@ -108,25 +108,25 @@ public:
 
   // Of the turns by `step` steps in every `stride`-th direction round `axis`, the clear one
   // with the most slack.
-  [[nodiscard]] std::optional<Turn> best_at(const Eigen::Vector3d& centre,
-                                            const Eigen::Vector3d& normal,
-                                            const Eigen::Vector3d& axis, int step,
-                                            int stride) const {
-    const Eigen::Vector3d u = square_to(axis), w = axis.cross(u);
-    const double angle = step * options_.step_deg * deg;
-    std::optional<Turn> best;
+  [[nodiscard]] std::optional<AxisTurn> best_at(const Eigen::Vector3d& centre,
+                                                const Eigen::Vector3d& normal,
+                                                const Eigen::Vector3d& axis, int step,
+                                                int stride) const {
+    const Eigen::Vector3d u = square_to_axis(axis), w = axis.cross(u);
+    const double angle = step * options_.step_deg * rad_per_deg;
+    std::optional<AxisTurn> best;
     double most = -1.0;
     for (int k = 0; k < options_.azimuths; k += stride) {
       const double phi = 2.0 * std::numbers::pi * k / options_.azimuths;
       const Eigen::Vector3d about = std::cos(phi) * u + std::sin(phi) * w;
-      const Eigen::Vector3d a = turned(axis, about, angle);
+      const Eigen::Vector3d a = turned_about(axis, about, angle);
       if (!allowed(a, normal) || !clear(centre, a)) {
         continue;
       }
       const double slack = clearance_.slack(centre - r_ * a, a, 2.0);
       if (slack > most) {
         most = slack;
-        best = Turn{angle, about};
+        best = AxisTurn{angle, about};
       }
     }
     return best;
@@ -140,8 +140,9 @@ private:
 
 // The largest turn reaching each vertex from those the search turned, less the ramp's
 // fall over the mesh's edges (Dijkstra, largest first).
-std::vector<Turn> spread(const SurfaceMesh& mesh, const Neighbours& n, std::vector<Turn> turns,
-                         const std::vector<ReachLimit>& reach, double fall_per_mm) {
+std::vector<AxisTurn> spread_turns(const SurfaceMesh& mesh, const EdgeNeighbours& n,
+                                   std::vector<AxisTurn> turns,
+                                   const std::vector<ReachLimit>& reach, double fall_per_mm) {
   using Item = std::pair<double, int>;
   std::priority_queue<Item> queue;
   for (std::size_t v = 0; v < turns.size(); ++v) {
@@ -171,10 +172,11 @@ std::vector<Turn> spread(const SurfaceMesh& mesh, const Neighbours& n, std::vect
 // Each turned axis averaged with its neighbours' `rounds` times: the searches turn by whole
 // steps in a few directions, so neighbouring cells can differ by a step where the need does
 // not. An axis the average would bring too near goes as far toward it as stays clear.
-void smooth(const SurfaceMesh& mesh, const Neighbours& n, const std::vector<Turn>& ramped,
-            const std::vector<ReachLimit>& reach, const std::vector<char>& failed,
-            const AxisSearch& search, const std::vector<Eigen::Vector3d>& centres,
-            std::vector<Eigen::Vector3d>& axes, int rounds) {
+void smooth_turned_axes(const SurfaceMesh& mesh, const EdgeNeighbours& n,
+                        const std::vector<AxisTurn>& ramped, const std::vector<ReachLimit>& reach,
+                        const std::vector<char>& failed, const AxisSearch& search,
+                        const std::vector<Eigen::Vector3d>& centres,
+                        std::vector<Eigen::Vector3d>& axes, int rounds) {
   const auto moves = [&](std::size_t v) { return ramped[v].angle > 0.0 && failed[v] == 0; };
   const auto kept = axes;
   std::vector<Eigen::Vector3d> next = axes;
@@ -224,7 +226,7 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
   const AxisSearch search(clearance, options);
   const double r = clearance.tool().ball_radius;
   const auto& fixture = clearance.fixture();
-  std::vector<Turn> turns(axes.size());
+  std::vector<AxisTurn> turns(axes.size());
   // 0: clear as it is; 1: no clear axis; 2: the ball under the stock; 3: to be searched.
   std::vector<char> blocked(axes.size(), 0);
   split_work(axes.size(), [&](std::size_t begin, std::size_t end) {
@@ -260,7 +262,7 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
       searched.push_back(v);
     }
   }
-  std::vector<std::optional<Turn>> cell_turns(firsts.size());
+  std::vector<std::optional<AxisTurn>> cell_turns(firsts.size());
   split_work(
       firsts.size(),
       [&](std::size_t begin, std::size_t end) {
@@ -279,12 +281,13 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
         blocked[v] = 1;
         continue;
       }
-      const Eigen::Vector3d a = turned(axes[v], cell->about, cell->angle);
-      std::optional<Turn> own = search.allowed(a, mesh.normals[v]) && search.clear(centres[v], a)
-                                    ? cell
-                                    : search.nearest(centres[v], mesh.normals[v], axes[v]);
+      const Eigen::Vector3d a = turned_about(axes[v], cell->about, cell->angle);
+      std::optional<AxisTurn> own =
+          search.allowed(a, mesh.normals[v]) && search.clear(centres[v], a)
+              ? cell
+              : search.nearest(centres[v], mesh.normals[v], axes[v]);
       blocked[v] = own ? 0 : 1;
-      turns[v] = own.value_or(Turn{});
+      turns[v] = own.value_or(AxisTurn{});
     }
   });
   for (std::size_t v = 0; v < axes.size(); ++v) {
@@ -293,14 +296,14 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
       ++(blocked[v] == 2 ? report.under_floor : report.collided);
     } else if (turns[v].angle > 0.0) {
       ++report.turned;
-      report.largest_turn_deg = std::max(report.largest_turn_deg, turns[v].angle / deg);
+      report.largest_turn_deg = std::max(report.largest_turn_deg, turns[v].angle / rad_per_deg);
     }
   }
   if (report.turned == 0) {
     return report;
   }
-  const auto n = neighbours(mesh);
-  const auto ramped = spread(mesh, n, turns, reach, options.ramp_deg_per_mm * deg);
+  const auto n = edge_neighbours(mesh);
+  const auto ramped = spread_turns(mesh, n, turns, reach, options.ramp_deg_per_mm * rad_per_deg);
   std::vector<char> failed(axes.size(), 0);
   split_work(axes.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
@@ -311,8 +314,8 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
       // (A turn spread from elsewhere may leave the limits, or not clear this vertex.)
       const Eigen::Vector3d own = axes[v];
       failed[v] = 1;
-      for (const auto& t : {ramped[v], turns[v], Turn{}}) {
-        const Eigen::Vector3d a = turned(own, t.about, t.angle);
+      for (const auto& t : {ramped[v], turns[v], AxisTurn{}}) {
+        const Eigen::Vector3d a = turned_about(own, t.about, t.angle);
         if (search.allowed(a, mesh.normals[v]) && search.clear(centres[v], a)) {
           axes[v] = a;
           failed[v] = 0;
@@ -321,7 +324,8 @@ ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vec
       }
     }
   });
-  smooth(mesh, n, ramped, reach, failed, search, centres, axes, options.smoothing_rounds);
+  smooth_turned_axes(mesh, n, ramped, reach, failed, search, centres, axes,
+                     options.smoothing_rounds);
   for (std::size_t v = 0; v < axes.size(); ++v) {
     report.spread += ramped[v].angle > 0.0 ? 1 : 0;
     if (failed[v] != 0) {

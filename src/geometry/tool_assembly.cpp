@@ -9,7 +9,7 @@ namespace subfeed::geometry {
 namespace {
 
 // The distance in the (along, across) plane from (x, y) to the segment ab.
-double segment_distance_2d(double x, double y, double ax, double ay, double bx, double by) {
+double section_segment_distance(double x, double y, double ax, double ay, double bx, double by) {
   const double dx = bx - ax, dy = by - ay;
   const double length2 = dx * dx + dy * dy;
   const double t =
@@ -116,10 +116,11 @@ double body_distance(const ToolBody& body, const Eigen::Vector3d& tip, const Eig
   }
   // Outside: the nearest of the three edges of the body's half-section (the axis is inside).
   return std::min(
-      {segment_distance_2d(along, across, body.from_mm, 0.0, body.from_mm, body.radius_from_mm),
-       segment_distance_2d(along, across, body.to_mm, 0.0, body.to_mm, body.radius_to_mm),
-       segment_distance_2d(along, across, body.from_mm, body.radius_from_mm, body.to_mm,
-                           body.radius_to_mm)});
+      {section_segment_distance(along, across, body.from_mm, 0.0, body.from_mm,
+                                body.radius_from_mm),
+       section_segment_distance(along, across, body.to_mm, 0.0, body.to_mm, body.radius_to_mm),
+       section_segment_distance(along, across, body.from_mm, body.radius_from_mm, body.to_mm,
+                                body.radius_to_mm)});
 }
 
 Eigen::Vector3d body_lowest_point(const ToolBody& body, const Eigen::Vector3d& tip,
