@@ -2,11 +2,13 @@
 // Tool axes turned clear of collisions (assembly_clearance.hpp), per mesh vertex, before
 // any pass is sliced. Beyond the paper, which leaves interference open.
 //
-// At each vertex in reach the ball's centre is fixed by the surface (contact + r normal);
-// only the axis can change. Where the planner's axis (the averaged normal) keeps every rule
+// At each vertex in reach the ball's centre is fixed by the surface (contact + r normal,
+// lifted clear where a hollow is narrower than the ball, as the pass will be); only the axis
+// can change. Where the planner's axis (the averaged normal) keeps every rule
 // with `extra_mm` to spare, it stays. Elsewhere the nearest clear axis is searched: axes
 // turned from it by growing angles (`step_deg`), in `azimuths` directions round it, kept
-// within `max_tilt_deg` of +Z and with the contact on the ball's lower half; at the first
+// within `max_tilt_deg` of +Z and at most 80 degrees from the normal (the contact well
+// below the ball's equator, where the flutes begin); at the first
 // angle that has clear axes, the one with the most slack wins (first on a coarse grid of
 // turns, then finer below and round the first found). Neighbouring vertices share a search
 // (`search_cell_mm`). A vertex with none is
@@ -54,8 +56,8 @@ struct ClearAxesReport {
   double largest_turn_deg = 0.0;
 };
 
-// `centres`: the ball centre at each vertex; `axes` the planner's axes (unit), turned in
-// place; `reach` updated where a vertex in reach has no clear axis.
+// `centres`: the ball centre at each vertex (lifted clear); `axes` the planner's axes (unit),
+// turned in place; `reach` updated where a vertex in reach has no clear axis.
 ClearAxesReport clear_axes(const SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& centres,
                            std::vector<Eigen::Vector3d>& axes, std::vector<ReachLimit>& reach,
                            const AssemblyClearance& clearance, const ClearAxesOptions& options,
