@@ -87,7 +87,7 @@ void plan_and_verify_clear(const std::string& part, const std::vector<std::strin
 
 TEST_CASE("the dome with a 32 mm holder on a 40 mm stick-out: every body clear, none under the "
           "floor",
-          "[slow]") {
+          "[parts][slow]") {
   plan_and_verify_clear(
       "dome.obj", {"--tool", "ball:6", "--shank", "6", "--stickout", "40", "--holder", "32:40"},
       {"flutes", "shank", "holder 1"}, 0.05);
@@ -95,7 +95,7 @@ TEST_CASE("the dome with a 32 mm holder on a 40 mm stick-out: every body clear, 
 
 TEST_CASE("the seat with a 20 mm holder on a 20 mm stick-out: every body clear, none under the "
           "floor",
-          "[slow]") {
+          "[parts][slow]") {
   plan_and_verify_clear(
       "seat.obj", {"--tool", "ball:2", "--shank", "2", "--stickout", "20", "--holder", "20:30"},
       {"flutes", "shank", "holder 1"}, 0.03);
@@ -141,7 +141,7 @@ TEST_CASE("a bad tool or fixture is one line naming the option, and nothing is w
 }
 
 TEST_CASE("a path whose recorded holder would hit the floor is refused by post --cage and verify",
-          "[slow]") {
+          "[parts][slow]") {
   TempDir dir;
   const auto cl = (dir.path() / "seat.cl").string();
   const auto seat = source_dir + "/examples/seat.obj";

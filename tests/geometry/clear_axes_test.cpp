@@ -137,7 +137,7 @@ geometry::PlanOptions pocket_plan(const geometry::ToolAssembly& tool) {
 
 TEST_CASE("a pocket the holder cannot enter has its floor left uncut and reported, and every "
           "move keeps the whole tool 0.5 mm clear",
-          "[slow]") {
+          "[parts][slow]") {
   const auto cage = pocket(16.0);
   const auto surface = geometry::LimitSurface::build(cage);
   REQUIRE(surface);
@@ -177,7 +177,7 @@ TEST_CASE("a pocket the holder cannot enter has its floor left uncut and reporte
 }
 
 TEST_CASE("walls too steep for a straight tool are cut with the axis turned clear, smoothly",
-          "[slow]") {
+          "[parts][slow]") {
   const auto cage = pocket(10.0);
   const auto surface = geometry::LimitSurface::build(cage);
   REQUIRE(surface);
