@@ -183,7 +183,8 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
     if (!picture.empty()) {
       log.info("  picture: " + picture +
                " (top view; scallop blue = 0 to red = max with its colour bar in mm, black = gouge "
-               "over 1 um, white = passes, a scale bar in mm)");
+               "over 1 um, white = passes; left uncut: dark grey = no ball came, light grey = "
+               "over the tilt, tan = only under the floor; a scale bar in mm)");
     }
   }
   return {};

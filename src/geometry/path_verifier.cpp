@@ -232,8 +232,9 @@ struct Measured {
 // The grids the samples are measured against, built once.
 // The samples no ball reached, with their shares of the area.
 struct Uncut {
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points; // no ball came
   std::vector<double> areas;
+  std::vector<LeftSample> left; // every sample not measured for scallop, for the picture
 };
 
 struct Sweeps {
@@ -284,18 +285,21 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
   if (s.normal.z() < sweeps.reach_z) {
     ++report.out_of_reach_samples;
     report.out_of_reach_area += share;
+    uncut.left.push_back({s.point, LeftUncut::beyond_tilt});
     return;
   }
   if ((s.point + r * s.normal).z() - r <
       sweeps.ball_floor_z - AssemblyClearance::floor_tolerance_mm) {
     ++report.below_floor_samples;
     report.below_floor_area += share;
+    uncut.left.push_back({s.point, LeftUncut::below_floor});
     return;
   }
   if (!std::isfinite(h.height)) {
     ++report.uncut_samples;
     uncut.points.push_back(s.point);
     uncut.areas.push_back(share);
+    uncut.left.push_back({s.point, LeftUncut::no_ball});
     return;
   }
   Sample sample = where;
@@ -361,11 +365,13 @@ void add_face(FaceMeasured& face, VerifyReport& report, std::vector<Measured>& k
   std::ranges::move(face.kept, std::back_inserter(kept));
   std::ranges::move(face.uncut.points, std::back_inserter(uncut.points));
   std::ranges::move(face.uncut.areas, std::back_inserter(uncut.areas));
+  std::ranges::move(face.uncut.left, std::back_inserter(uncut.left));
 }
 
 // Every face's samples, `spacing` apart, measured, the faces shared between the cores.
 std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps& sweeps,
-                                      const Measurer& m, double spacing, VerifyReport& report) {
+                                      const Measurer& m, double spacing, VerifyReport& report,
+                                      std::vector<LeftSample>& left) {
   std::vector<FaceMeasured> faces(static_cast<std::size_t>(surface.face_count()));
   split_work(
       faces.size(),
@@ -387,6 +393,7 @@ std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps&
   // Neighbouring samples lie about `spacing` apart (a face's rate follows its size at its
   // centre, so a little more where it stretches): three spacings join a region, not two.
   report.uncut = uncut_regions(uncut.points, uncut.areas, 3.0 * spacing);
+  left = std::move(uncut.left);
   return kept;
 }
 
@@ -442,7 +449,8 @@ void add_ideal_length(double r, double h, const std::vector<Measured>& kept, Ver
 }
 
 Expected<void> draw_pictures(const VerifyOptions& options, const std::vector<Measured>& kept,
-                             const Path& path, const VerifyReport& report) {
+                             std::vector<LeftSample> left, const Path& path,
+                             const VerifyReport& report) {
   if (!options.svg && !options.png) {
     return {};
   }
@@ -456,6 +464,7 @@ Expected<void> draw_pictures(const VerifyOptions& options, const std::vector<Mea
   picture.name = options.name;
   picture.target = options.scallop_target;
   picture.passes_xy = path.passes_xy;
+  picture.left = std::move(left);
   if (options.svg) {
     SUBFEED_TRY(write_svg(*options.svg, picture));
   }
@@ -488,10 +497,11 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
                       options.ball_floor_z.value_or(-std::numeric_limits<double>::infinity())};
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, sweeps.cuts, r, {}};
-  auto kept = measure_surface(surface, sweeps, m, spacing, report);
+  std::vector<LeftSample> left;
+  auto kept = measure_surface(surface, sweeps, m, spacing, report, left);
   summarise_heights(m, spacing, kept, report);
   add_ideal_length(r, options.scallop_target.value_or(report.max_scallop), kept, report);
-  SUBFEED_TRY(draw_pictures(options, kept, path, report));
+  SUBFEED_TRY(draw_pictures(options, kept, std::move(left), path, report));
   return report;
 }
 

@@ -17,10 +17,41 @@ namespace {
 
 constexpr int cells_across = 240; // heat-map cells along the longer side
 constexpr int cell_pixels = 3;
-constexpr double gouge_mark = -2.0;
 
-// The heat map: the worst scallop of the samples that fall in each cell, -1 where none,
-// gouge_mark where any of them was gouged.
+// A cell's value is a scallop height (>= 0) or one of these marks.
+constexpr double empty_mark = -1.0, gouge_mark = -2.0, no_ball_mark = -3.0,
+                 beyond_tilt_mark = -4.0, below_floor_mark = -5.0;
+
+double mark_of(LeftUncut why) {
+  switch (why) {
+  case LeftUncut::no_ball:
+    return no_ball_mark;
+  case LeftUncut::beyond_tilt:
+    return beyond_tilt_mark;
+  case LeftUncut::below_floor:
+    return below_floor_mark;
+  }
+  return empty_mark;
+}
+
+// Which of two values a cell shows (verify_picture.hpp): the higher rank, and of two
+// heights the worse.
+int rank_of(double v) {
+  return v >= 0.0                 ? 3
+         : v == gouge_mark        ? 5
+         : v == no_ball_mark      ? 4
+         : v == beyond_tilt_mark  ? 2
+         : v == below_floor_mark  ? 1
+                                  : 0;
+}
+
+double merged(double a, double b) {
+  const int ra = rank_of(a), rb = rank_of(b);
+  return ra != rb ? (ra > rb ? a : b) : std::max(a, b);
+}
+
+// The heat map: per cell, what the samples that fall in it show (merged), empty_mark where
+// none fell.
 struct Raster {
   Eigen::Vector2d lo;
   double cell = 1.0; // mm
@@ -31,6 +62,12 @@ struct Raster {
     return {(p.x() - lo.x()) / cell * cell_pixels,
             (height - (p.y() - lo.y()) / cell) * cell_pixels};
   }
+  void add(const Eigen::Vector3d& p, double v) {
+    const int x = static_cast<int>((p.x() - lo.x()) / cell);
+    const int y = static_cast<int>((p.y() - lo.y()) / cell);
+    auto& at = values[static_cast<std::size_t>(y * width + x)];
+    at = merged(at, v);
+  }
 };
 
 Raster rasterise(const VerifyPicture& picture) {
@@ -39,34 +76,36 @@ Raster rasterise(const VerifyPicture& picture) {
     lo = lo.cwiseMin(p.head<2>());
     hi = hi.cwiseMax(p.head<2>());
   }
+  for (const auto& l : picture.left) {
+    lo = lo.cwiseMin(l.point.head<2>());
+    hi = hi.cwiseMax(l.point.head<2>());
+  }
   Raster r;
   r.lo = lo;
   r.cell = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-9}) / cells_across;
   r.width = static_cast<int>(std::ceil((hi.x() - lo.x()) / r.cell)) + 1;
   r.height = static_cast<int>(std::ceil((hi.y() - lo.y()) / r.cell)) + 1;
-  r.values.assign(static_cast<std::size_t>(r.width * r.height), -1.0);
+  r.values.assign(static_cast<std::size_t>(r.width * r.height), empty_mark);
   for (std::size_t i = 0; i < picture.points.size(); ++i) {
-    const int x = static_cast<int>((picture.points[i].x() - lo.x()) / r.cell);
-    const int y = static_cast<int>((picture.points[i].y() - lo.y()) / r.cell);
-    auto& v = r.values[static_cast<std::size_t>(y * r.width + x)];
-    if (picture.gouged[i] != 0 || v == gouge_mark) {
-      v = gouge_mark;
-    } else {
-      v = std::max(v, picture.heights[i]);
-    }
+    r.add(picture.points[i], picture.gouged[i] != 0 ? gouge_mark : picture.heights[i]);
   }
-  // Where the samples lie sparser than the cells (flat faces), an empty cell takes the
-  // worst of its measured neighbours instead of showing a hole.
+  for (const auto& l : picture.left) {
+    r.add(l.point, mark_of(l.why));
+  }
+  // Where the samples lie sparser than the cells (flat faces), an empty cell shows what its
+  // neighbours show instead of a hole.
   const auto measured = r.values;
   for (int y = 0; y < r.height; ++y) {
     for (int x = 0; x < r.width; ++x) {
       auto& v = r.values[static_cast<std::size_t>(y * r.width + x)];
-      for (int dy = -1; dy <= 1 && v == -1.0; ++dy) {
+      if (v != empty_mark) {
+        continue;
+      }
+      for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
           if (nx >= 0 && ny >= 0 && nx < r.width && ny < r.height) {
-            const double n = measured[static_cast<std::size_t>(ny * r.width + nx)];
-            v = n >= 0.0 ? std::max(v, n) : v;
+            v = merged(v, measured[static_cast<std::size_t>(ny * r.width + nx)]);
           }
         }
       }
@@ -75,9 +114,28 @@ Raster rasterise(const VerifyPicture& picture) {
   return r;
 }
 
+// The legend's swatches for the marks, in its order.
+struct Swatch {
+  double mark;
+  std::string_view label;
+};
+constexpr std::array<Swatch, 4> swatches{{{gouge_mark, "gouge"},
+                                          {no_ball_mark, "no ball"},
+                                          {beyond_tilt_mark, "over tilt"},
+                                          {below_floor_mark, "under floor"}}};
+
 Rgb colour(double v, double max_height) {
   if (v == gouge_mark) {
     return {0, 0, 0};
+  }
+  if (v == no_ball_mark) {
+    return {96, 96, 96};
+  }
+  if (v == beyond_tilt_mark) {
+    return {200, 200, 200};
+  }
+  if (v == below_floor_mark) {
+    return {210, 180, 140};
   }
   const double f = max_height > 0.0 ? std::clamp(v / max_height, 0.0, 1.0) : 0.0;
   return {static_cast<std::uint8_t>(255 * f), static_cast<std::uint8_t>(80 * (1 - f)),
@@ -97,7 +155,7 @@ template <class Visit> void for_each_cell(const Raster& r, double max_height, Vi
   for (int y = 0; y < r.height; ++y) {
     for (int x = 0; x < r.width; ++x) {
       const double v = r.values[static_cast<std::size_t>(y * r.width + x)];
-      if (v != -1.0) {
+      if (v != empty_mark) {
         visit(x, r.height - 1 - y, colour(v, max_height));
       }
     }
@@ -121,6 +179,10 @@ struct Layout {
   // The height a tick stands for, tick 0 at the bottom of the bar.
   [[nodiscard]] double tick_value(int tick) const { return max_height * tick / (ticks - 1); }
   [[nodiscard]] int tick_y(int tick) const { return bar_y + bar_h - bar_h * tick / (ticks - 1); }
+  // The top of swatch `i`, below the bar.
+  [[nodiscard]] int swatch_y(int i) const {
+    return bar_y + bar_h + pad + i * (text_height(text_scale) + pad);
+  }
 };
 
 // The longest 1, 2 or 5 times a power of ten that is at most a quarter of `span_mm`.
@@ -155,16 +217,21 @@ Layout layout_of(const Raster& r, const VerifyPicture& picture) {
   l.map_y = line + 2 * Layout::pad;
   l.map_w = r.width * cell_pixels;
   l.map_h = r.height * cell_pixels;
-  const int body_h = std::max(l.map_h, 180);
+  const int swatch_lines = static_cast<int>(swatches.size());
+  const int body_h = std::max(l.map_h, 120 + swatch_lines * (line + Layout::pad));
   l.bar_x = l.map_x + l.map_w + 2 * Layout::pad;
   l.bar_y = l.map_y + line + 2 * Layout::pad;                         // below the bar's own heading
-  l.bar_h = body_h - (line + 2 * Layout::pad) - (line + Layout::pad); // and above the swatch
+  l.bar_h = body_h - (line + 2 * Layout::pad) -
+            swatch_lines * (line + Layout::pad); // and above the swatches
   l.scale_mm = nice_length(r.width * r.cell);
   l.scale_px = static_cast<int>(std::lround(l.scale_mm / r.cell * cell_pixels));
   l.scale_y = l.map_y + body_h + Layout::pad;
-  int labels = 0; // the widest tick label
+  int labels = 0; // the widest tick or swatch label
   for (int t = 0; t < Layout::ticks; ++t) {
     labels = std::max(labels, text_width(tick_label(l.tick_value(t)), Layout::text_scale));
+  }
+  for (const auto& s : swatches) {
+    labels = std::max(labels, text_width(s.label, Layout::text_scale));
   }
   l.width = std::max({l.bar_x + Layout::bar_width + Layout::pad + labels + Layout::pad,
                       l.bar_x + text_width(bar_heading, Layout::text_scale) + Layout::pad,
@@ -227,11 +294,14 @@ Expected<void> write_svg(const std::filesystem::path& file, const VerifyPicture&
                           l.bar_x + Layout::bar_width + Layout::pad, l.tick_y(t) + 5,
                           tick_label(l.tick_value(t))));
   }
-  out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"#000\"/>"
-                        "<text x=\"{}\" y=\"{}\">gouge</text>\n",
-                        l.bar_x, l.bar_y + l.bar_h + Layout::pad, Layout::bar_width,
-                        l.bar_x + Layout::bar_width + Layout::pad,
-                        l.bar_y + l.bar_h + Layout::pad + 10));
+  for (std::size_t i = 0; i < swatches.size(); ++i) {
+    const int y = l.swatch_y(static_cast<int>(i));
+    const auto c = colour(swatches[i].mark, 1.0);
+    out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" "
+                          "fill=\"rgb({},{},{})\"/><text x=\"{}\" y=\"{}\">{}</text>\n",
+                          l.bar_x, y, Layout::bar_width, c[0], c[1], c[2],
+                          l.bar_x + Layout::bar_width + Layout::pad, y + 10, swatches[i].label));
+  }
   out.write(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"4\" fill=\"#000\"/>"
                         "<text x=\"{}\" y=\"{}\">{:g} mm</text>\n</svg>\n",
                         l.map_x, l.scale_y + 5, l.scale_px, l.map_x + l.scale_px + Layout::pad,
@@ -265,9 +335,11 @@ void draw_legend(RgbImage& image, const Layout& l) {
     draw_text(image, l.bar_x + Layout::bar_width + Layout::pad, y - text_height(s) / 2,
               tick_label(l.tick_value(t)), s, black);
   }
-  const int swatch_y = l.bar_y + l.bar_h + Layout::pad;
-  fill(image, l.bar_x, swatch_y, Layout::bar_width, text_height(s), black);
-  draw_text(image, l.bar_x + Layout::bar_width + Layout::pad, swatch_y, "gouge", s, black);
+  for (std::size_t i = 0; i < swatches.size(); ++i) {
+    const int y = l.swatch_y(static_cast<int>(i));
+    fill(image, l.bar_x, y, Layout::bar_width, text_height(s), colour(swatches[i].mark, 1.0));
+    draw_text(image, l.bar_x + Layout::bar_width + Layout::pad, y, swatches[i].label, s, black);
+  }
   fill(image, l.map_x, l.scale_y + text_height(s) / 2 - 2, l.scale_px, 4, black);
   draw_text(image, l.map_x + l.scale_px + Layout::pad, l.scale_y,
             fmt::format("{:g} mm", l.scale_mm), s, black);

@@ -3,6 +3,7 @@
 #include "sim/pty.hpp"
 #include "support/hand_made_cl.hpp"
 #include "support/output_lines.hpp"
+#include "support/png_reader.hpp"
 #include "support/run_process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -403,6 +404,25 @@ TEST_CASE("plan leaves a closed part's underside uncut and says how much, and ve
   CHECK(std::stod(left[1]) >= std::stod(beyond[1]));
   CHECK(std::stod(left[1]) <= 1.05 * std::stod(beyond[1]));
   CHECK(verified_max(verified.out) <= 0.05 * 1.05);
+  // Measured for a tool that could tilt to 90, the band the plan left between 60 and 90
+  // degrees is surface no ball came to: dark grey in the picture, round the cut top.
+  const auto png = (dir.path() / "block.png").string();
+  const auto pictured = run_process({bin, "verify", cage, cl, "--tool", "ball:4", "--max-tilt",
+                                     "90", "--spacing", "0.2", "--png", png});
+  REQUIRE(pictured.exit_code == 0);
+  const auto image = subfeed::testing::read_png(png);
+  long grey = 0, scallop = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const auto at = static_cast<std::size_t>((y * image.width + x) * 3);
+      const int r = image.rgb[at], g = image.rgb[at + 1], b = image.rgb[at + 2];
+      grey += r == 96 && g == 96 && b == 96 ? 1 : 0;
+      scallop += g <= 80 && r + b >= 250 && r + b <= 260 ? 1 : 0;
+    }
+  }
+  const long swatch = 16L * 14L; // the legend's own
+  CHECK(grey > 20 * swatch);
+  CHECK(scallop > grey);
   // The tilt is checked as an option.
   const auto bad = run_process({bin, "plan", cage, "--tool", "ball:4", "--scallop", "0.05",
                                 "--max-tilt", "200", "-o", cl + ".2"});

@@ -90,3 +90,71 @@ TEST_CASE("verify picture, PNG: title, colour bar from blue to red, and a scale 
   // 5 mm at 1/12 mm a cell and 3 pixels a cell.
   CHECK(longest_black_run(image, map_bottom, image.height) == 180);
 }
+
+TEST_CASE("verify picture, PNG and SVG: surface left uncut is marked by why, in the map and the "
+          "legend, over cut surface in the same cell") {
+  auto p = ramp();
+  // A 2 x 2 mm square no ball came to, over measured samples (x 2..4, y 2..4); a strip
+  // beyond the tilt (x 10..12) and one under the floor (x 16..18), each with no sample cut.
+  const auto square = [&](double x0, double x1, LeftUncut why) {
+    for (double x = x0; x <= x1; x += 0.05) {
+      for (double y = 2.0; y <= 4.0; y += 0.05) {
+        p.left.push_back({{x, y, 1.0}, why});
+      }
+    }
+  };
+  square(2.0, 4.0, LeftUncut::no_ball);
+  square(10.0, 12.0, LeftUncut::beyond_tilt);
+  square(16.0, 18.0, LeftUncut::below_floor);
+  const testing::TempDir dir;
+  const auto png = dir.path() / "p.png";
+  REQUIRE(write_png(png, p));
+  const auto image = testing::read_png(png);
+  // Map pixel of (x, y) mm: 1/12 mm a cell, 3 pixels a cell, y from the top at 10 mm.
+  const auto at = [&](double x, double y, std::array<int, 3> rgb) {
+    return is(image, 8 + static_cast<int>(x * 36), 30 + static_cast<int>((10.0 - y) * 36), rgb);
+  };
+  CHECK(at(3.0, 3.0, {96, 96, 96}));
+  CHECK_FALSE(at(11.0, 3.0, {200, 200, 200})); // cut surface there shows its scallop
+  CHECK_FALSE(at(17.0, 3.0, {210, 180, 140}));
+  CHECK_FALSE(at(3.0, 7.0, {96, 96, 96})); // cut, outside the square
+  int swatches = 0;
+  for (int y = 30; y < image.height; ++y) {
+    swatches += is(image, 8 + 723 + 16 + 8, y, {96, 96, 96}) ? 1 : 0;
+  }
+  CHECK(swatches > 0);
+  const auto svg_file = dir.path() / "p.svg";
+  REQUIRE(write_svg(svg_file, p));
+  const auto svg = testing::read_text(svg_file);
+  for (const char* label : {">no ball</text>", ">over tilt</text>", ">under floor</text>"}) {
+    CHECK(svg.find(label) != std::string::npos);
+  }
+  CHECK(svg.find("fill=\"rgb(96,96,96)\"") != std::string::npos);
+}
+
+TEST_CASE("verify picture: beyond-tilt and under-floor marks show where no cut sample lies") {
+  VerifyPicture p;
+  for (int i = 0; i <= 200; ++i) {
+    for (int j = 0; j <= 100; ++j) {
+      const Eigen::Vector3d at(i * 0.1, j * 0.1, 0.0);
+      if (i < 100) {
+        p.points.push_back(at);
+        p.heights.push_back(0.01);
+        p.gouged.push_back(0);
+      } else {
+        p.left.push_back({at, i < 150 ? LeftUncut::beyond_tilt : LeftUncut::below_floor});
+      }
+    }
+  }
+  p.max_height = 0.01;
+  const testing::TempDir dir;
+  const auto png = dir.path() / "p.png";
+  REQUIRE(write_png(png, p));
+  const auto image = testing::read_png(png);
+  const auto at = [&](double x, double y, std::array<int, 3> rgb) {
+    return is(image, 8 + static_cast<int>(x * 36), 30 + static_cast<int>((10.0 - y) * 36), rgb);
+  };
+  CHECK(at(5.0, 5.0, {255, 0, 0}));
+  CHECK(at(12.5, 5.0, {200, 200, 200}));
+  CHECK(at(17.5, 5.0, {210, 180, 140}));
+}
