@@ -158,6 +158,34 @@ Expected<std::vector<double>> TomlTableReader::numbers(std::string_view key, std
   return values;
 }
 
+Expected<std::vector<std::vector<double>>>
+TomlTableReader::number_lists(std::string_view key) {
+  auto node = required(key, "an array of arrays of numbers");
+  if (!node) {
+    return std::unexpected(node.error());
+  }
+  const toml::array* outer = (*node)->as_array();
+  const std::string expected = "expected an array of arrays of numbers";
+  if (outer == nullptr) {
+    return invalid(key, expected + ", got " + std::string(type_name(**node)));
+  }
+  std::vector<std::vector<double>> lists;
+  for (const toml::node& element : *outer) {
+    const toml::array* inner = element.as_array();
+    if (inner == nullptr) {
+      return invalid(key, expected);
+    }
+    auto& list = lists.emplace_back();
+    for (const toml::node& value : *inner) {
+      if (!value.is_number() || !std::isfinite(*value.value<double>())) {
+        return invalid(key, expected);
+      }
+      list.push_back(*value.value<double>());
+    }
+  }
+  return lists;
+}
+
 Expected<TomlTableReader> TomlTableReader::table(std::string_view key) {
   auto node = required(key, "a table");
   if (!node) {

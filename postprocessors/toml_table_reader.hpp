@@ -27,6 +27,8 @@ public:
   [[nodiscard]] Expected<std::string> string(std::string_view key);
   [[nodiscard]] Expected<std::vector<double>> numbers(std::string_view key, std::size_t count);
   [[nodiscard]] Expected<TomlTableReader> table(std::string_view key);
+  // An array of arrays of numbers, each inner array of any length.
+  [[nodiscard]] Expected<std::vector<std::vector<double>>> number_lists(std::string_view key);
 
   // One of `choices`, else an error listing them.
   [[nodiscard]] Expected<std::string> choice(std::string_view key,

@@ -1,9 +1,12 @@
-// `subfeed config M.toml...`: validates machine configs and shows what subfeed understood
-// from them, so that a sign or a limit can be checked before the first block is posted.
+// `subfeed config FILE...`: validates machine configs and tool tables and shows what subfeed
+// understood from them, so that a sign, a limit or a holder can be checked before the first
+// block is posted.
 
 #include "command.hpp"
 
+#include "post/config_kind.hpp"
 #include "post/machine_config.hpp"
+#include "post/tool_table.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -57,22 +60,52 @@ void describe(const post::MachineConfig& m, Logger& log) {
                   c.tcp ? ", TCP control" : ""));
 }
 
+void describe(const post::ToolTable& table, Logger& log) {
+  log.info(fmt::format("{}: tool table, {} tools", table.file, table.tools.size()));
+  for (const auto& t : table.tools) {
+    const auto size = [](const char* what, const std::optional<double>& mm, const char* fallback) {
+      return mm ? fmt::format(", {} {:g}", what, *mm) : fmt::format(", {} {}", what, fallback);
+    };
+    std::string holder;
+    for (const auto& h : t.holder) {
+      holder += holder.empty() ? ", holder " : " then ";
+      holder += h.bottom_diameter == h.top_diameter
+                    ? fmt::format("{:g} x {:g}", h.bottom_diameter, h.length)
+                    : fmt::format("{:g} to {:g} x {:g}", h.bottom_diameter, h.top_diameter, h.length);
+    }
+    log.info(fmt::format("  {} (line {}): {} {:g}{}{}{}{}", t.name, t.line, t.cutter, t.diameter,
+                         size("flutes", t.flute, "3D"), size("shank", t.shank, "D"),
+                         size("stick-out", t.stickout, "4D"),
+                         holder.empty() ? std::string(", no holder") : holder));
+  }
+}
+
+// One file checked and described, by what it holds.
+Expected<void> check_config(const std::string& file, Logger& log) {
+  SUBFEED_TRY_ASSIGN(const auto kind, post::config_kind(file));
+  if (kind == post::ConfigKind::machine) {
+    SUBFEED_TRY_ASSIGN(const auto config, post::load_machine_config(file));
+    describe(config, log);
+  } else {
+    SUBFEED_TRY_ASSIGN(const auto table, post::load_tool_table(file));
+    describe(table, log);
+  }
+  return {};
+}
+
 Expected<void> check_configs(const std::vector<std::string>& files, Logger& log) {
   std::size_t rejected = 0;
   for (const auto& file : files) {
-    auto config = post::load_machine_config(file);
-    if (!config) {
+    if (auto checked = check_config(file, log); !checked) {
       if (rejected++ == 0 && files.size() == 1) {
-        return std::unexpected(config.error());
+        return checked;
       }
-      log.error(config.error());
-      continue;
+      log.error(checked.error());
     }
-    describe(*config, log);
   }
   if (rejected > 0) {
     return fail(ErrorCode::bad_input,
-                fmt::format("{} of {} machine configs rejected", rejected, files.size()));
+                fmt::format("{} of {} configs rejected", rejected, files.size()));
   }
   return {};
 }
@@ -81,10 +114,12 @@ Expected<void> check_configs(const std::vector<std::string>& files, Logger& log)
 
 void add_config_command(CLI::App& app, Action& chosen) {
   auto files = std::make_shared<std::vector<std::string>>();
-  CLI::App* cmd = app.add_subcommand("config", "Validate machine configs and show what they say");
-  cmd->add_option("machine", *files, "Machine config files (TOML)")
+  CLI::App* cmd = app.add_subcommand(
+      "config", "Validate machine configs and tool tables and show what they say");
+  cmd->add_option("files", *files,
+                  "Machine configs (with a [machine] table) or tool tables (TOML)")
       ->required()
-      ->type_name("M.toml");
+      ->type_name("FILE.toml");
   cmd->callback(
       [&chosen, files] { chosen = [files](Logger& log) { return check_configs(*files, log); }; });
 }

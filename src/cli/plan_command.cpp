@@ -31,7 +31,8 @@ struct PlanCommandOptions {
   std::string output;
 };
 
-Expected<void> run_plan(const PlanCommandOptions& o, Logger& log) {
+Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
+  SUBFEED_TRY(resolve_tool(o.plan, log));
   SUBFEED_TRY_ASSIGN(const auto options, plan_options_from(o.plan));
   const double radius = options.ball_radius;
   const auto setup = o.setup.with_defaults();

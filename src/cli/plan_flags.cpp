@@ -1,13 +1,24 @@
 #include "plan_flags.hpp"
 
+#include "job/logger.hpp"
+#include "job/tool_spec.hpp"
+
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 namespace subfeed::cli {
 
 using namespace subfeed::job; // NOLINT: the front wires the job library
 
 void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
-  cmd.add_option("--tool", o.tool, "Cutter: ball:D (diameter D mm)")->required(required);
+  cmd.add_option("--tool", o.tool,
+                 "Cutter: ball:D (diameter D mm), or a tool's name in the tool table (with its "
+                 "flutes, shank, stick-out and holder; flags given here win)")
+      ->required(required)
+      ->type_name("ball:D|NAME");
+  cmd.add_option("--tools", o.tool_table,
+                 "Tool table that --tool NAME is looked up in (default configs/tools.toml)")
+      ->type_name("FILE");
   cmd.add_option("--flute", o.flute, "Flute length from the tip, mm (default 3 D)")
       ->type_name("MM")
       ->check(CLI::Range(1e-3, 10000.0));
@@ -74,6 +85,25 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
   cmd.add_option("--refine", o.refine,
                  "Most deformation solves while measured spacing exceeds the need")
       ->check(CLI::Range(1, 100));
+}
+
+Expected<void> resolve_tool(job::PlanSettings& settings, job::Logger& log) {
+  const std::string name = settings.tool;
+  SUBFEED_TRY_ASSIGN(const auto from, job::resolve_tool_name(settings));
+  if (from) {
+    std::string flags = "--tool " + settings.tool;
+    const auto add = [&flags](const char* flag, double mm) {
+      flags += mm > 0.0 ? fmt::format(" {} {:g}", flag, mm) : std::string();
+    };
+    add("--flute", settings.flute);
+    add("--shank", settings.shank);
+    add("--stickout", settings.stickout);
+    for (const auto& h : settings.holder) {
+      flags += " --holder " + h;
+    }
+    log.info(fmt::format("tool {} ({}): {}", name, *from, flags));
+  }
+  return {};
 }
 
 void add_gate_tolerance_flag(CLI::App& cmd, double& tolerance_mm) {

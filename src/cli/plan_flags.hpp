@@ -1,7 +1,12 @@
 #pragma once
 // The planning flags `plan` and `run` share, registered on a subcommand.
 
+#include "base/error.hpp"
 #include "job/plan_settings.hpp"
+
+namespace subfeed::job {
+class Logger;
+}
 
 namespace CLI {
 class App;
@@ -11,6 +16,8 @@ namespace subfeed::cli {
 
 // `required`: --tool and --scallop must be given (run checks them itself: CL input has none).
 void add_plan_flags(CLI::App& cmd, job::PlanSettings& flags, bool required = true);
+// `--tool NAME` looked up in the tool table (job/tool_spec.hpp), and said where from.
+[[nodiscard]] Expected<void> resolve_tool(job::PlanSettings& settings, job::Logger& log);
 // --gate-tolerance, which `post --cage` takes too.
 void add_gate_tolerance_flag(CLI::App& cmd, double& tolerance_mm);
 

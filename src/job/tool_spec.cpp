@@ -1,7 +1,9 @@
 #include "job/tool_spec.hpp"
 
 #include "base/number_text.hpp"
+#include "post/tool_table.hpp"
 
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <vector>
@@ -65,6 +67,48 @@ std::map<std::string, std::string, std::less<>> fields_of(std::string_view text)
 }
 
 } // namespace
+
+Expected<std::optional<std::string>> resolve_tool_name(PlanSettings& s) {
+  if (s.tool.empty() || s.tool.starts_with("ball:")) {
+    return std::optional<std::string>();
+  }
+  if (!std::filesystem::exists(s.tool_table)) {
+    return fail(ErrorCode::usage,
+                fmt::format("'{}' is not ball:D, and there is no tool table {} to look it up in "
+                            "(give --tools FILE)",
+                            s.tool, s.tool_table),
+                {{}, 0, "--tool"});
+  }
+  SUBFEED_TRY_ASSIGN(const auto table, post::load_tool_table(s.tool_table));
+  const auto* entry = table.find(s.tool);
+  if (entry == nullptr) {
+    std::string names;
+    for (const auto& t : table.tools) {
+      names += (names.empty() ? "" : ", ") + t.name;
+    }
+    return fail(ErrorCode::usage,
+                fmt::format("'{}' is neither ball:D nor a tool in {} (it has: {})", s.tool,
+                            table.file, names),
+                {{}, 0, "--tool"});
+  }
+  s.tool = fmt::format("ball:{:g}", entry->diameter);
+  s.flute = s.flute > 0.0 ? s.flute : entry->flute.value_or(0.0);
+  s.shank = s.shank > 0.0 ? s.shank : entry->shank.value_or(0.0);
+  s.stickout = s.stickout > 0.0 ? s.stickout : entry->stickout.value_or(0.0);
+  if (s.holder.empty()) {
+    std::vector<geometry::HolderStage> stages;
+    for (const auto& h : entry->holder) {
+      stages.push_back({h.bottom_diameter, h.top_diameter, h.length});
+    }
+    const auto text = holder_text(stages);
+    for (const auto stage : split(text, ',')) {
+      if (!stage.empty()) {
+        s.holder.emplace_back(stage);
+      }
+    }
+  }
+  return std::optional<std::string>(table.file + ":" + std::to_string(entry->line));
+}
 
 Expected<double> parse_ball_tool(const std::string& spec) {
   const std::string prefix = "ball:";

@@ -170,3 +170,85 @@ TEST_CASE("a path whose recorded holder would hit the floor is refused by post -
       verified.err, R"(subfeed: error: .*bad\.cl:\d+: the tool collides: \d+ measured poses )"
                     R"(break the fixture's rules, .*holder 1 goes below its floor limit .*)"));
 }
+
+TEST_CASE("a tool by name (--tool NAME) comes from the tool table, the flags beside it win, and the CL "
+          "data records the sizes, not the name") {
+  TempDir dir;
+  const auto table = dir.path() / "tools.toml";
+  {
+    std::ofstream out(table);
+    out << "[long6]\ncutter = \"ball\"\ndiameter = 6\nflute = 20\nshank = 8\nstickout = 50\n"
+           "holder = [[30, 40, 25], [60, 10]]\n";
+  }
+  const auto plan = [&](const std::string& cl, const std::vector<std::string>& more) {
+    std::vector<std::string> argv{bin,         "plan", source_dir + "/examples/plane.obj",
+                                  "--scallop", "0.05", "--floor",
+                                  "none",      "-o",   (dir.path() / cl).string()};
+    argv.insert(argv.end(), more.begin(), more.end());
+    return run_process(argv);
+  };
+  const auto named = plan("named.cl", {"--tool", "long6", "--tools", table.string()});
+  REQUIRE(named.exit_code == 0);
+  CHECK(has_line(named.out, "tool long6 (" + table.string() +
+                                ":1): --tool ball:6 --flute 20 --shank 8 --stickout 50 --holder "
+                                "30:40:25 --holder 60:10"));
+  const auto text = subfeed::testing::read_text(dir.path() / "named.cl");
+  CHECK(text.find("\nCUTTER/6.,3.\n") != std::string::npos);
+  CHECK(text.find("\nPPRINT TOOL flute=20 shank=8 stickout=50 holder=30:40:25,60:10\n") !=
+        std::string::npos);
+  // The same tool spelt out on the command line plans the same path.
+  const auto spelt = plan("spelt.cl", {"--tool", "ball:6", "--flute", "20", "--shank", "8",
+                                       "--stickout", "50", "--holder", "30:40:25", "--holder",
+                                       "60:10"});
+  REQUIRE(spelt.exit_code == 0);
+  CHECK(subfeed::testing::read_text(dir.path() / "spelt.cl") == text);
+  const auto overridden =
+      plan("over.cl", {"--tool", "long6", "--tools", table.string(), "--stickout", "30",
+                       "--holder", "25:20"});
+  REQUIRE(overridden.exit_code == 0);
+  CHECK(subfeed::testing::read_text(dir.path() / "over.cl")
+            .find("\nPPRINT TOOL flute=20 shank=8 stickout=30 holder=25:20\n") != std::string::npos);
+  // configs/tools.toml is the default, from where the user stands (the project's top here).
+  const auto shipped = run_process(
+      {"/bin/sh", "-c",
+       "cd '" + source_dir + "' && exec '" + bin +
+           "' plan examples/plane.obj --tool ball6-er32 --scallop 0.05 --floor none -o '" +
+           (dir.path() / "shipped.cl").string() + "'"});
+  REQUIRE(shipped.exit_code == 0);
+  CHECK(subfeed::testing::read_text(dir.path() / "shipped.cl")
+            .find("\nPPRINT TOOL flute=18 shank=6 stickout=40 holder=32:40\n") != std::string::npos);
+}
+
+TEST_CASE("a tool name the table lacks, a missing table and a bad table are one line each, and "
+          "nothing is written") {
+  TempDir dir;
+  const auto cl = (dir.path() / "x.cl").string();
+  const auto table = dir.write("tools.toml", "[a]\ncutter = \"ball\"\ndiameter = 6\n"
+                                             "[b]\ncutter = \"ball\"\ndiameter = 4\nholder = [[1]]\n");
+  const auto plan = [&](const std::string& tool, const std::string& tools) {
+    return run_process({bin, "plan", source_dir + "/examples/plane.obj", "--tool", tool,
+                        "--tools", tools, "--scallop", "0.05", "-o", cl});
+  };
+  const auto missing = plan("c", table.string());
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.err == "subfeed: error: " + table.string() +
+                           ":7: b.holder: expected stages [D, L] or [D1, D2, L], bottom first, "
+                           "each size above 0 and at most 10000 mm\n");
+  const auto good = dir.write("good.toml", "[a]\ncutter = \"ball\"\ndiameter = 6\n"
+                                           "[b]\ncutter = \"ball\"\ndiameter = 4\n");
+  const auto unknown = plan("c", good.string());
+  CHECK(unknown.exit_code == 1);
+  CHECK(unknown.err == "subfeed: error: --tool: 'c' is neither ball:D nor a tool in " +
+                           good.string() + " (it has: a, b)\n");
+  const auto none = plan("a", (dir.path() / "none.toml").string());
+  CHECK(none.exit_code == 1);
+  CHECK(none.err == "subfeed: error: --tool: 'a' is not ball:D, and there is no tool table " +
+                        (dir.path() / "none.toml").string() +
+                        " to look it up in (give --tools FILE)\n");
+  CHECK_FALSE(std::filesystem::exists(cl));
+  const auto config = run_process({bin, "config", good.string()});
+  CHECK(config.exit_code == 0);
+  CHECK(has_line(config.out, good.string() + ": tool table, 2 tools"));
+  CHECK(has_line(config.out,
+                 "  b (line 4): ball 4, flutes 3D, shank D, stick-out 4D, no holder"));
+}

@@ -12,7 +12,9 @@
 namespace subfeed::job {
 
 struct PlanSettings {
-  std::string tool;
+  std::string tool; // "ball:D", or a tool's name in the tool table (job/tool_spec.hpp)
+  // Where a tool's name is looked up. Not recorded: a job keeps the sizes it resolved to.
+  std::string tool_table = "configs/tools.toml";
   double scallop = 0.0;
   std::string direction = "x";
   bool baseline = false;

@@ -21,6 +21,12 @@
 
 namespace subfeed::job {
 
+// `--tool NAME`: the tool of that name in the settings' tool table (post/tool_table.hpp)
+// becomes "ball:D" and the flute, shank, stick-out and holder the command line left unset;
+// the command line's own win. Returns the table's file when it looked a name up, nothing
+// when the tool was "ball:D" (or not given) already.
+[[nodiscard]] Expected<std::optional<std::string>> resolve_tool_name(PlanSettings& settings);
+
 // Ball radius in mm from "ball:D"; an error naming --tool otherwise.
 [[nodiscard]] Expected<double> parse_ball_tool(const std::string& spec);
 
