@@ -213,10 +213,48 @@ private:
     check_limits(to);
     const bool all_known = std::ranges::all_of(
         std::array{0, 1, 2}, [&](int i) { return known_[static_cast<std::size_t>(i)]; });
-    if (mode_.rapid || !all_known) {
+    if (!all_known) {
+      return {};
+    }
+    if (mode_.rapid) {
+      if (options_.on_pose) {
+        for (const auto& p : poses_between(from, from_tip, to)) {
+          options_.on_pose(p, line_, true);
+        }
+      }
       return {};
     }
     return feed_block(from, from_tip, to, map);
+  }
+
+  // How many points a block is sampled at: samples_per_block, and for a caller of on_pose
+  // one each half degree a rotary axis turns.
+  [[nodiscard]] int sample_count(const JointPosition& from, const JointPosition& to) const {
+    int n = options_.samples_per_block;
+    if (options_.on_pose) {
+      for (std::size_t r = 3; r < 6; ++r) {
+        n = std::max(n, static_cast<int>(std::ceil(std::abs(to[r] - from[r]) / 0.5)));
+      }
+    }
+    return n;
+  }
+
+  // The tool's poses at t = k / n, k = 1..n, along the block.
+  [[nodiscard]] std::vector<ToolPose> poses_between(const JointPosition& from, const Vec3& from_tip,
+                                                    const JointPosition& to) const {
+    const int n = sample_count(from, to);
+    std::vector<ToolPose> out;
+    for (int k = 1; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      ToolPose p = kinematics_->forward(lerp(from, to, t));
+      if (mode_.tcp) {
+        for (std::size_t i = 0; i < 3; ++i) {
+          p.tip[i] = from_tip[i] + t * (tip_[i] - from_tip[i]);
+        }
+      }
+      out.push_back(p);
+    }
+    return out;
   }
 
   double block_minutes(const JointPosition& from, const Vec3& from_tip,
@@ -285,22 +323,16 @@ private:
     }
     const cl::ClPose& b = compare ? *cur_ : cl::ClPose{};
     const cl::ClPose& a = compare && prev_ ? *prev_ : b;
-    const int n = options_.samples_per_block;
     double length = 0.0;
     Vec3 last = from_tip;
-    for (int k = 1; k <= n; ++k) {
-      const double t = static_cast<double>(k) / n;
-      const ToolPose p = kinematics_->forward(lerp(from, to, t));
-      Vec3 tip = p.tip;
-      if (mode_.tcp) {
-        for (std::size_t i = 0; i < 3; ++i) {
-          tip[i] = from_tip[i] + t * (tip_[i] - from_tip[i]);
-        }
-      }
-      length += distance(last, tip);
-      last = tip;
+    for (const auto& p : poses_between(from, from_tip, to)) {
+      length += distance(last, p.tip);
+      last = p.tip;
       if (compare) {
-        measure(tip, p.axis, a, b);
+        measure(p.tip, p.axis, a, b);
+      }
+      if (options_.on_pose) {
+        options_.on_pose(p, line_, false);
       }
     }
     if (minutes > 0.0) {

@@ -122,6 +122,9 @@ Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
   if (options.whole_tool) {
     log.info(tool_summary(options.tool, s));
   }
+  if (const auto axis = axis_summary(options, s); !axis.empty()) {
+    log.info(axis);
+  }
   log.info(gate_summary(s.gate));
   log.detail(time_summary(s.times, s.solves));
   report_left_material(s, log);

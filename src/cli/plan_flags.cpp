@@ -10,7 +10,7 @@ namespace subfeed::cli {
 
 using namespace subfeed::job; // NOLINT: the front wires the job library
 
-void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
+void add_tool_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
   cmd.add_option("--tool", o.tool,
                  "Cutter: ball:D (diameter D mm), or a tool's name in the tool table (with its "
                  "flutes, shank, stick-out and holder; flags given here win)")
@@ -48,6 +48,10 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
                  "(default 0.5)")
       ->type_name("MM")
       ->check(CLI::Range(0.0, 100.0));
+}
+
+void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
+  add_tool_flags(cmd, o, required);
   cmd.add_option("--scallop", o.scallop, "Scallop height target, mm")->required(required);
   cmd.add_option(
       "--direction", o.direction,
@@ -65,6 +69,17 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
                  "with --machine, else 90)")
       ->type_name("DEG")
       ->check(CLI::Range(0.0, 180.0));
+  cmd.add_option("--lead", o.lead,
+                 "Lean the tool's top this far ahead of the feed direction (negative: behind), "
+                 "degrees, so a ball-end does not cut with its tip; less where the full lean "
+                 "would collide or exceed the tilt (default 0)")
+      ->type_name("DEG")
+      ->check(CLI::Range(-45.0, 45.0));
+  cmd.add_option("--tilt", o.tilt,
+                 "Lean the tool's top this far to the left of the feed direction (negative: "
+                 "right), degrees (default 0)")
+      ->type_name("DEG")
+      ->check(CLI::Range(-45.0, 45.0));
   cmd.add_flag("--one-way", o.one_way, "Cut every pass in the same direction (default zig-zag)");
   cmd.add_option("--feed", o.feed, "Cutting feed, mm/min")->check(CLI::Range(1.0, 100000.0));
   cmd.add_option("--plunge-feed", o.plunge_feed, "Plunge feed, mm/min")

@@ -16,6 +16,9 @@ namespace subfeed::cli {
 
 // `required`: --tool and --scallop must be given (run checks them itself: CL input has none).
 void add_plan_flags(CLI::App& cmd, job::PlanSettings& flags, bool required = true);
+// The tool and the fixture alone: --tool, --tools, --flute, --shank, --stickout, --holder,
+// --floor, --stock-margin, --clearance-min (part of the above; `check --cage` takes them).
+void add_tool_flags(CLI::App& cmd, job::PlanSettings& flags, bool required);
 // `--tool NAME` looked up in the tool table (job/tool_spec.hpp), and said where from.
 [[nodiscard]] Expected<void> resolve_tool(job::PlanSettings& settings, job::Logger& log);
 // --gate-tolerance, which `post --cage` takes too.

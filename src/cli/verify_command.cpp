@@ -2,6 +2,7 @@
 // scallop measurement of a path on its surface (geometry/path_verifier.hpp), and the whole
 // tool's clearance where the CL data records it (geometry/path_clearance.hpp).
 
+#include "clearance_report.hpp"
 #include "command.hpp"
 #include "job/setup_flags.hpp"
 #include "job/tool_spec.hpp"
@@ -60,57 +61,21 @@ void report_uncut(const std::vector<geometry::UncutRegion>& regions, Logger& log
   }
 }
 
-std::string point_text(const Eigen::Vector3d& p) {
-  return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z());
-}
-
 // The whole tool the CL data records (PPRINT TOOL and FIXTURE), measured over the path: each
 // body's least clearance to the part and the floor. A broken rule is an error (exit 2),
 // after the report.
 Expected<void> report_whole_tool(const VerifyCommandOptions& o, const cl::ClHeader& header,
                                  const geometry::Cage& cage, const geometry::LimitSurface& surface,
-                                 double radius, Logger& log) {
-  const auto& records = header.whole_tool;
-  if (records.tool.empty() || records.fixture.empty()) {
+                                 Logger& log) {
+  SUBFEED_TRY_ASSIGN(const auto recorded, recorded_tool(header, o.cl));
+  if (!recorded) {
     log.info("  whole tool: not recorded in the CL data (no PPRINT TOOL and FIXTURE): only the "
              "ball is measured");
     return {};
   }
-  SUBFEED_TRY_ASSIGN(
-      const auto tool,
-      parse_tool_record(radius, records.tool, {o.cl, static_cast<int>(records.tool_line), {}}));
-  SUBFEED_TRY_ASSIGN(
-      const auto fixture,
-      parse_fixture_record(records.fixture, {o.cl, static_cast<int>(records.fixture_line), {}}));
-  SUBFEED_TRY_ASSIGN(const auto c, geometry::path_clearance(cage, surface, o.cl, tool, fixture));
-  log.info(fmt::format("  whole tool: {}; floor {}, stock {:g} mm below it, clearance {:g} mm; "
-                       "{} moves swept",
-                       tool.text(),
-                       fixture.floor_z ? fmt::format("z {:.3f} mm", *fixture.floor_z) : "none",
-                       fixture.stock_margin, fixture.clearance_min, c.moves));
-  for (const auto& b : c.bodies) {
-    std::string part =
-        b.body == "ball" ? "cuts the part"
-        : std::isfinite(b.to_part)
-            ? fmt::format("{:.3f} mm from the part near {}", b.to_part, point_text(b.part_point))
-            : fmt::format("more than {:g} mm from the part", c.searched_mm);
-    std::string floor = std::isfinite(b.to_floor)
-                            ? fmt::format("lowest {:.3f} mm above the floor (tip at {})",
-                                          b.to_floor, point_text(b.floor_tip))
-                            : std::string("no floor");
-    log.info(fmt::format("    {}: {}, {}", b.body, part, floor));
-  }
-  if (c.first) {
-    const auto& v = *c.first;
-    return fail(ErrorCode::bad_input,
-                fmt::format("the tool collides: {} measured poses break the fixture's rules, the "
-                            "first in the move to line {}: the {} {} {:.4f} mm at {}",
-                            c.broken, c.first_line, v.body,
-                            v.floor ? "goes below its floor limit by" : "comes within", v.distance,
-                            point_text(v.where)),
-                {o.cl, static_cast<int>(c.first_line), {}});
-  }
-  return {};
+  SUBFEED_TRY_ASSIGN(const auto c, geometry::path_clearance(cage, surface, o.cl, recorded->tool,
+                                                            recorded->fixture));
+  return report_clearance(c, recorded->tool, recorded->fixture, o.cl, log);
 }
 
 Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
@@ -178,7 +143,7 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        "L/L* {:.3f}",
                        r.path_length, r.cutting_length, r.passes, r.points, r.ideal_length,
                        r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
-  SUBFEED_TRY(report_whole_tool(o, reader.header(), cage, surface, radius, log));
+  SUBFEED_TRY(report_whole_tool(o, reader.header(), cage, surface, log));
   for (const auto& picture : {o.svg, o.png}) {
     if (!picture.empty()) {
       log.info("  picture: " + picture +

@@ -27,6 +27,11 @@ constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along 
 // mm a pass point keeps beyond the fixture's clearance_min: the move to the next point blends
 // the two poses, and the gate holds the blend to clearance_min.
 constexpr double pass_clearance_extra = 0.05;
+// mm either way a pass's feed direction is taken over when leaning the axis: longer than
+// two crossings near one mesh vertex, short against the pass's curvature.
+constexpr double lean_feed_span_mm = 0.25;
+// cos 80 deg: a leaned axis keeps the contact within 80 degrees of the tip, on the ball.
+constexpr double max_contact_cos = 0.17364817766693033;
 // mm the ball's bottom keeps over the lowest it may go on the pass along the floor band's
 // edge: twice the floor's tolerance, against rounding.
 constexpr double floor_limit_above_mm = 2e-3;
@@ -536,8 +541,46 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
   return put(plunge, sink);
 }
 
-Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
+void ToolpathPlanner::lean_axes(std::vector<PassPoint>& pass, const TriangleTree& design) {
+  std::vector<Eigen::Vector3d> centres;
+  for (const auto& p : pass) {
+    centres.push_back(p.centre);
+  }
+  const double r = options_.ball_radius;
+  const auto feeds = feed_directions(centres, lean_feed_span_mm);
+  std::optional<AssemblyClearance> clearance;
+  if (options_.whole_tool) {
+    clearance.emplace(options_.tool, options_.fixture, design);
+  }
+  // The rules the unleaned axis was held to (within_reach), checked for a leaned one.
+  const auto keeps = [&](std::size_t i, double fraction) {
+    const auto& p = pass[i];
+    const Eigen::Vector3d axis = leaned_axis(p.axis, feeds[i], options_.lean, fraction);
+    const double tilt = std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    // The contact stays on the ball, where it is modelled: as for turned axes (clear_axes).
+    return tilt <= options_.max_tilt_deg && axis.dot(p.normal) >= max_contact_cos &&
+           (!any_hidden_ || withdraws(design, p.centre, axis, top_z_, reach_options_)) &&
+           (!clearance || clearance->clear(p.centre - r * axis, axis, pass_clearance_extra));
+  };
+  const auto fractions = lean_fractions(centres, options_.lean, keeps);
+  auto& report = summary_.lean;
+  for (std::size_t i = 0; i < pass.size(); ++i) {
+    pass[i].axis = leaned_axis(pass[i].axis, feeds[i], options_.lean, fractions[i]);
+    ++report.points;
+    report.full += fractions[i] == 1.0 ? 1 : 0;
+    report.reduced += fractions[i] < 1.0 ? 1 : 0;
+    report.least_fraction = std::min(report.least_fraction, fractions[i]);
+  }
+}
+
+Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, const Sink& sink,
                                           const TriangleTree& design) {
+  std::vector<PassPoint> leaned;
+  if (options_.lean.any() && !options_.fixed_axis) {
+    leaned = given;
+    lean_axes(leaned, design);
+  }
+  const auto& pass = leaned.empty() ? given : leaned;
   const auto kept = reduce(pass);
   const auto pose = [&](std::size_t i) {
     const auto& p = pass[kept[i]];
@@ -545,7 +588,16 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& pass, co
                    options_.feed);
   };
   SUBFEED_TRY(link_to(pose(0), sink, design));
+  auto& steps = summary_.axis_steps;
   for (std::size_t i = 1; i < kept.size(); ++i) {
+    const auto& a = pass[kept[i - 1]].axis;
+    const auto& b = pass[kept[i]].axis;
+    const double turn = std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    steps.mean_deg += (turn - steps.mean_deg) / static_cast<double>(++steps.steps);
+    if (turn > steps.largest_deg) {
+      steps.largest_deg = turn;
+      steps.largest_at = pass[kept[i]].centre - options_.ball_radius * b;
+    }
     SUBFEED_TRY(put(pose(i), sink));
   }
   summary_.points += static_cast<long>(kept.size());

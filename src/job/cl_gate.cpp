@@ -29,15 +29,11 @@ Expected<geometry::MotionGate> gate_for_cl(const std::filesystem::path& cage_pat
                                 {},
                                 {}};
   // The whole tool and the fixture, where the CL data records what it was planned for.
-  const auto& records = header.whole_tool;
-  if (!records.tool.empty() && !records.fixture.empty()) {
+  SUBFEED_TRY_ASSIGN(const auto recorded, recorded_tool(header, cl_file));
+  if (recorded) {
     options.whole_tool = true;
-    SUBFEED_TRY_ASSIGN(options.tool,
-                       parse_tool_record(cutter.diameter / 2, records.tool,
-                                         {cl_file, static_cast<int>(records.tool_line), {}}));
-    SUBFEED_TRY_ASSIGN(options.fixture,
-                       parse_fixture_record(records.fixture,
-                                            {cl_file, static_cast<int>(records.fixture_line), {}}));
+    options.tool = recorded->tool;
+    options.fixture = recorded->fixture;
   }
   return geometry::MotionGate::build(cage, surface, options);
 }

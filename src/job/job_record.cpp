@@ -183,6 +183,11 @@ Expected<JobSpec> job_spec(const JobRecord& o, Logger& log) {
   }
   SUBFEED_TRY_ASSIGN(auto plan, plan_options_from(o.plan));
   if (machine.kinematics == post::KinematicsType::xyz && !plan.fixed_axis) {
+    if (plan.lean.any()) {
+      return fail(ErrorCode::usage,
+                  "a three-axis machine holds the tool vertical: it cannot lead or tilt",
+                  {o.machine, 0, o.plan.lead != 0.0 ? "--lead" : "--tilt"});
+    }
     plan.fixed_axis = true; // a three-axis machine holds the tool vertical
     log.detail("three-axis machine: the tool axis stays vertical");
   }
@@ -224,7 +229,7 @@ std::string encode_job(const JobRecord& o) {
       "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
       "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
       "gate_tolerance={} max_tilt={} whole_tool={} flute={} shank={} stickout={} "
-      "holder={} floor={} stock_margin={} clearance_min={}{}",
+      "holder={} floor={} stock_margin={} clearance_min={} lead={} tilt={}{}",
       escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
       escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
       number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
@@ -232,7 +237,7 @@ std::string encode_job(const JobRecord& o) {
       number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance),
       number(p.max_tilt), p.whole_tool ? 1 : 0, number(p.flute), number(p.shank),
       number(p.stickout), escape(joined(p.holder)), escape(p.floor), number(p.stock_margin),
-      number(p.clearance_min), setup_fields(o.setup));
+      number(p.clearance_min), number(p.lead), number(p.tilt), setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
@@ -298,6 +303,11 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
   }
   if (fields.contains("max_tilt")) {
     o.plan.max_tilt = real("max_tilt");
+  }
+  // Jobs recorded before lead and tilt held the tool along the axis the planner chose.
+  if (fields.contains("lead")) {
+    o.plan.lead = real("lead");
+    o.plan.tilt = real("tilt");
   }
   // Jobs recorded before the whole tool was checked re-plan as they were: the ball alone.
   o.plan.whole_tool = get_or("whole_tool", "0") == "1";

@@ -45,6 +45,12 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& o) {
     options.axis_radius = o.axis_radius;
   }
   options.fixed_axis = o.axis == "fixed";
+  options.lean.lead_deg = o.lead;
+  options.lean.tilt_deg = o.tilt;
+  if (options.fixed_axis && options.lean.any()) {
+    return fail(ErrorCode::usage, "a vertical tool (--axis fixed) cannot lead or tilt",
+                {{}, 0, o.lead != 0.0 ? "--lead" : "--tilt"});
+  }
   options.max_tilt_deg = o.max_tilt >= 0.0 ? o.max_tilt : 90.0;
   options.zigzag = !o.one_way;
   options.feed = o.feed;

@@ -69,7 +69,8 @@ std::map<std::string, std::string, std::less<>> fields_of(std::string_view text)
 } // namespace
 
 Expected<std::optional<std::string>> resolve_tool_name(PlanSettings& s) {
-  if (s.tool.empty() || s.tool.starts_with("ball:")) {
+  // A cutter spelt out (ball:D, or a shape not yet planned) is no name.
+  if (s.tool.empty() || s.tool.find(':') != std::string::npos) {
     return std::optional<std::string>();
   }
   if (!std::filesystem::exists(s.tool_table)) {
@@ -214,6 +215,22 @@ std::string fixture_record(const geometry::Fixture& fixture) {
   return fmt::format("floor={} margin={:g} clearance={:g}",
                      fixture.floor_z ? fmt::format("{:.6f}", *fixture.floor_z) : "none",
                      fixture.stock_margin, fixture.clearance_min);
+}
+
+Expected<std::optional<RecordedTool>> recorded_tool(const cl::ClHeader& header,
+                                                    const std::string& cl_file) {
+  const auto& records = header.whole_tool;
+  if (records.tool.empty() || records.fixture.empty()) {
+    return std::optional<RecordedTool>();
+  }
+  RecordedTool out;
+  SUBFEED_TRY_ASSIGN(out.tool,
+                     parse_tool_record(header.cutter.diameter / 2, records.tool,
+                                       {cl_file, static_cast<int>(records.tool_line), {}}));
+  SUBFEED_TRY_ASSIGN(out.fixture,
+                     parse_fixture_record(records.fixture,
+                                          {cl_file, static_cast<int>(records.fixture_line), {}}));
+  return std::optional<RecordedTool>(std::move(out));
 }
 
 Expected<geometry::Fixture> parse_fixture_record(std::string_view text, const Where& where) {

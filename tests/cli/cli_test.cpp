@@ -36,7 +36,8 @@ TEST_CASE("the front answers --version and --help with exit 0") {
         "  plan                        Plan constant-scallop finishing passes on a cage",
         "  resume                      Continue a job from its journal after a fault",
         "  verify                      Measure the scallop and gouges a CL path leaves",
-        "  config                      Validate machine configs and show what they say",
+        "  config                      Validate machine configs and tool tables and show what they "
+        "say",
         "  ports                       List this computer's serial ports",
         "  post                        Post-process CL data into G-code for one machine"}) {
     CHECK(has_line(help.out, line));

@@ -8,6 +8,8 @@
 #include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -93,6 +95,35 @@ TEST_CASE("the dome with a 32 mm holder on a 40 mm stick-out: every body clear, 
       {"flutes", "shank", "holder 1"}, 0.05);
 }
 
+TEST_CASE("the dome and the seat with a lead and a tilt: every body still clear, the lean eased "
+          "where the holder would reach the floor, and said so",
+          "[parts][slow]") {
+  plan_and_verify_clear("dome.obj",
+                        {"--tool", "ball:6", "--shank", "6", "--stickout", "40", "--holder",
+                         "32:40", "--lead", "20"},
+                        {"flutes", "shank", "holder 1"}, 0.05);
+  plan_and_verify_clear("seat.obj",
+                        {"--tool", "ball:2", "--shank", "2", "--stickout", "20", "--holder",
+                         "20:30", "--lead", "-10", "--tilt", "10", "--direction", "y"},
+                        {"flutes", "shank", "holder 1"}, 0.03);
+  TempDir dir;
+  const auto planned = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
+                                    "ball:6", "--shank", "6", "--stickout", "40", "--holder",
+                                    "32:40", "--lead", "20", "--scallop", "0.05", "-o",
+                                    (dir.path() / "d.cl").string()});
+  REQUIRE(planned.exit_code == 0);
+  const auto eased = line_captures(
+      planned.out, R"(  tool axis along passes: turns [0-9.]+ deg between poses on average, at )"
+                   R"(most ([0-9.]+) deg \(near .*\); lead 20 deg, tilt 0 deg kept in full at )"
+                   R"(([0-9.]+) % of ([0-9]+) points, eased toward the unleaned axis at ([0-9]+) )"
+                   R"(\(down to ([0-9]+) %\) where the full lean would collide, pass the tilt )"
+                   R"(limit or cut off the ball)");
+  REQUIRE(eased.size() == 6);
+  CHECK(std::stod(eased[2]) > 50.0); // most of the dome takes the whole lean
+  CHECK(std::stol(eased[4]) > 0);    // its foot does not, with this holder
+  CHECK(std::stod(eased[1]) < 10.0); // and the axis eases, no jump
+}
+
 TEST_CASE("the seat with a 20 mm holder on a 20 mm stick-out: every body clear, none under the "
           "floor",
           "[parts][slow]") {
@@ -133,6 +164,22 @@ TEST_CASE("a bad tool or fixture is one line naming the option, and nothing is w
   CHECK(stickout.exit_code == 1);
   CHECK(stickout.err == "subfeed: error: --stickout: the stick-out (20 mm) must be at least the "
                         "flute length (30 mm)\n");
+  const auto lead = plan({"--lead", "50"});
+  CHECK(lead.exit_code == 1);
+  CHECK(lead.err == "subfeed: usage: --lead: Value 50 not in range -45.000000 to 45.000000 (see "
+                    "subfeed --help)\n");
+  const auto fixed = plan({"--tilt", "5", "--axis", "fixed"});
+  CHECK(fixed.exit_code == 1);
+  CHECK(fixed.err == "subfeed: error: --tilt: a vertical tool (--axis fixed) cannot lead or tilt\n");
+  const auto router = run_process({bin, "run", source_dir + "/examples/plane.obj", "--machine",
+                                   source_dir + "/configs/grbl-router-3axis.toml", "--tool",
+                                   "ball:6", "--scallop", "0.05", "--lead", "10", "--sim", "-o",
+                                   (dir.path() / "router").string()});
+  CHECK(router.exit_code == 1);
+  CHECK(router.err == "subfeed: error: " + source_dir +
+                          "/configs/grbl-router-3axis.toml: --lead: a three-axis machine holds "
+                          "the tool vertical: it cannot lead or tilt\n");
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "router.nc"));
   const auto floor = plan({"--floor", "low"});
   CHECK(floor.exit_code == 1);
   CHECK(floor.err == "subfeed: error: --floor: 'low': expected a height in mm, or none (no floor "
@@ -251,4 +298,67 @@ TEST_CASE("a tool name the table lacks, a missing table and a bad table are one 
   CHECK(has_line(config.out, good.string() + ": tool table, 2 tools"));
   CHECK(has_line(config.out,
                  "  b (line 4): ball 4, flutes 3D, shank D, stick-out 4D, no holder"));
+}
+
+namespace {
+
+// Over examples/plane.obj (z = 0), ball 6 mm, one pass along X on the plane with the tool
+// axis `axis` (unit, in the XZ plane): the ball's centre 3 mm up, the tip 3 mm below it.
+std::string pass_along_x(double ax, double az) {
+  std::string cl = "PARTNO LEAN\nUNITS/MM\nCUTTER/6,3\nMULTAX/ON\n";
+  const auto pose = [&](double x, double z_above) {
+    return fmt::format("GOTO/{:.6f},0,{:.6f},{:.9f},0,{:.9f}\n", x - 3 * ax, 3 + z_above - 3 * az,
+                       ax, az);
+  };
+  cl += "RAPID\n" + pose(-8, 20) + "RAPID\n" + pose(-8, 2) + "FEDRAT/300\nPLUNGE\n" + pose(-8, 0);
+  cl += "FEDRAT/1000\n" + pose(8, 0) + "RETRACT\n" + pose(8, 20) + "FINI\n";
+  return cl;
+}
+
+} // namespace
+
+TEST_CASE("check with a cage: every body measured against the part and the floor, a holder "
+          "tilted into the part is exit 2, the pass upright passes") {
+  TempDir dir;
+  const auto plane = source_dir + "/examples/plane.obj";
+  const auto machine = source_dir + "/configs/grblhal-xyzac-trt.toml";
+  const std::vector<std::string> tool{"--tool",     "ball:6", "--flute",  "9",
+                                      "--stickout", "12",     "--holder", "40:20"};
+  const auto check = [&](const std::string& name, double ax, double az) {
+    const auto cl = dir.write(name + ".cl", pass_along_x(ax, az)).string();
+    const auto nc = (dir.path() / (name + ".nc")).string();
+    REQUIRE(run_process({bin, "post", cl, "--machine", machine, "-o", nc}).exit_code == 0);
+    std::vector<std::string> argv{bin, "check", nc, "--machine", machine, "--cage", plane};
+    argv.insert(argv.end(), tool.begin(), tool.end());
+    return run_process(argv);
+  };
+  const auto upright = check("upright", 0.0, 1.0);
+  INFO(upright.out << upright.err);
+  CHECK(upright.exit_code == 0);
+  CHECK(has_line_matching(upright.out, R"(  whole tool: ball 6, flutes 9, shank 6, stick-out 12, )"
+                                       R"(holder 40:20; floor z 0\.000 mm, stock 0 mm below it, )"
+                                       R"(clearance 0\.5 mm; [0-9]+ moves swept)"));
+  const auto holder = body_line(upright.out, "holder 1");
+  CHECK(holder.to_part > 5.5); // its face 12 mm over the plane, past what is searched
+  CHECK(holder.over_floor == Approx(12.0).margin(0.01));
+  CHECK(has_line(upright.out, "  check passed"));
+  // Leaning 45 degrees, the holder's rim (20 mm from the axis, 12 mm up it) dips 4.8 mm
+  // under the plane: z = 0.879 + 12 cos 45 - 20 sin 45.
+  const auto leaning = check("leaning", std::sqrt(0.5), std::sqrt(0.5));
+  INFO(leaning.out << leaning.err);
+  CHECK(leaning.exit_code == 2);
+  const auto under = body_line(leaning.out, "holder 1");
+  CHECK(under.over_floor == Approx(0.879 + 12 * std::sqrt(0.5) - 20 * std::sqrt(0.5)).margin(0.01));
+  CHECK(has_line_matching(leaning.err,
+                          "subfeed: error: " + (dir.path() / "leaning.nc").string() +
+                              R"(:[0-9]+: the tool collides: [0-9]+ measured poses break the )"
+                              R"(fixture's rules, the first in the move to line [0-9]+: the )"
+                              R"(holder 1 .*)"));
+  // Without a tool there is nothing to measure: the flags or the CL data's records.
+  const auto bare = run_process({bin, "check", (dir.path() / "upright.nc").string(), "--machine",
+                                 machine, "--cage", plane});
+  CHECK(bare.exit_code == 1);
+  CHECK(bare.err == "subfeed: error: --cage: the whole tool is needed: give --tool (with "
+                    "--shank, --stickout, --holder), or --cl with CL data that records it "
+                    "(PPRINT TOOL and FIXTURE)\n");
 }

@@ -158,3 +158,32 @@ TEST_CASE("a job record keeps the whole tool and fixture, and reads an older rec
   REQUIRE(options);
   CHECK_FALSE(options->whole_tool);
 }
+
+TEST_CASE("a job record keeps the lead and tilt, an older one has none, and a vertical tool "
+          "refuses them") {
+  auto job = job_with({});
+  job.plan.lead = 12.5;
+  job.plan.tilt = -4;
+  const auto back = decode_job(encode_job(job), {"j.journal", 0, "job"});
+  REQUIRE(back);
+  CHECK(back->plan.lead == 12.5);
+  CHECK(back->plan.tilt == -4);
+  const auto options = plan_options_from(back->plan);
+  REQUIRE(options);
+  CHECK(options->lean.lead_deg == 12.5);
+  CHECK(options->lean.tilt_deg == -4);
+  auto text = encode_job(job);
+  for (const char* key : {" lead=", " tilt="}) {
+    const auto at = text.find(key);
+    REQUIRE(at != std::string::npos);
+    text.erase(at, text.find(' ', at + 1) - at);
+  }
+  const auto older = decode_job(text, {"j.journal", 0, "job"});
+  REQUIRE(older);
+  CHECK(older->plan.lead == 0.0);
+  CHECK(older->plan.tilt == 0.0);
+  job.plan.axis = "fixed";
+  const auto fixed = plan_options_from(job.plan);
+  REQUIRE_FALSE(fixed);
+  CHECK(fixed.error().describe() == "--lead: a vertical tool (--axis fixed) cannot lead or tilt");
+}

@@ -8,9 +8,11 @@
 // motion mode (arcs, canned cycles, inches, incremental) is an error naming the line.
 
 #include "base/error.hpp"
+#include "post/kinematics.hpp"
 #include "post/machine_config.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 namespace subfeed::post {
@@ -20,6 +22,12 @@ struct CheckOptions {
   double axis_tolerance = 0.05;            // deg; the machine's singularity cone is allowed on top
   int samples_per_block = 8;               // points checked inside every feed block
   std::optional<std::filesystem::path> cl; // with PROGRAM.map beside the program
+  // Each pose the tool passes through, in order, in the workpiece frame, once X, Y and Z are
+  // known: every motion block's end and the points between as the joints move (rapids too,
+  // the joints moving together), at least samples_per_block a block and one each half
+  // degree a rotary axis turns, so that straight moves between them stay within a few um of
+  // the tool's path. For a caller that measures more than the tip (check --cage).
+  std::function<void(const ToolPose& pose, long line, bool rapid)> on_pose;
 };
 
 struct Finding {

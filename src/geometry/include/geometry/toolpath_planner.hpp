@@ -31,6 +31,7 @@
 #include "base/error.hpp"
 #include "cl/cl_pose.hpp"
 #include "geometry/assembly_clearance.hpp"
+#include "geometry/axis_lean.hpp"
 #include "geometry/clear_axes.hpp"
 #include "geometry/coarse_deformation.hpp"
 #include "geometry/deformation.hpp"
@@ -75,6 +76,8 @@ struct PlanOptions {
   // The tool axis's largest angle from +Z, degrees: surface beyond it (or hidden under
   // other parts of the surface) is left uncut (tool_reach.hpp), and no axis leans further.
   double max_tilt_deg = 90.0;
+  // Lead and tilt from the feed direction (axis_lean.hpp); none with fixed_axis.
+  AxisLean lean;
   bool zigzag = true;
   std::optional<double> tolerance; // mm along a pass; default min(h/10, 0.4 um)
   double feed = 1000.0;            // mm/min
@@ -115,6 +118,23 @@ struct PlanOptions {
   bool floor_at_lowest = false; // the floor is the limit surface's lowest point (its mesh's)
 };
 
+// How the lead and tilt were kept along the passes (axis_lean.hpp).
+struct LeanReport {
+  long points = 0;              // pass points leaned
+  long full = 0;                // of them with the whole lean
+  long reduced = 0;             // with part of it, or none, to keep the rules
+  double least_fraction = 1.0;  // the smallest part kept
+};
+
+// How much the tool axis turns between neighbouring poses along the passes: what the
+// rotary axes must follow while cutting.
+struct AxisSteps {
+  long steps = 0;
+  double largest_deg = 0.0;
+  Eigen::Vector3d largest_at = Eigen::Vector3d::Zero(); // the tip after it, mm
+  double mean_deg = 0.0;
+};
+
 struct PlanSummary {
   double scallop = 0.0;       // H asked for, mm: material thinner than this is within it
   double ball_radius = 0.0;   // mm
@@ -153,6 +173,8 @@ struct PlanSummary {
   double link_length = 0.0;                 // mm of retracts, rapids and plunges
   long stay_down_links = 0;                 // links made by feed along the surface
   double stay_down_length = 0.0;            // mm of them (counted in cut_length)
+  LeanReport lean;                          // with a lead or tilt (once run() has finished)
+  AxisSteps axis_steps;                     // along passes (once run() has finished)
   GateReport gate;                          // what the motion gate checked, once run() has finished
   PlanTimes times;                          // where the time went (slicing once run() has finished)
 
@@ -256,6 +278,8 @@ private:
                                             const PointGrid& triangles) const;
   void smooth_axes(std::vector<PassPoint>& pass) const; // along the pass, within the tilt
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
+  // The pass's axes leaned by the options' lead and tilt, as far as the rules allow.
+  void lean_axes(std::vector<PassPoint>& pass, const TriangleTree& design);
   [[nodiscard]] Expected<void> emit_pass(const std::vector<PassPoint>& pass, const Sink& sink,
                                          const TriangleTree& design);
   // Each pass in turn the one that starts (or, zig-zag, ends) nearest the tool.

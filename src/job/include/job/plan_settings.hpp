@@ -33,6 +33,10 @@ struct PlanSettings {
   // The tool axis's largest angle from +Z, degrees; < 0: the machine's tilt range when a
   // machine is known (run), else 90.
   double max_tilt = -1.0;
+  // Degrees from the feed direction (geometry/axis_lean.hpp): lead > 0 leans the tool's
+  // top ahead, tilt > 0 to the left.
+  double lead = 0.0;
+  double tilt = 0.0;
   // The tool above the ball (job/tool_spec.hpp): 0 or empty where not given.
   double flute = 0.0;              // mm from the tip
   double shank = 0.0;              // mm, diameter

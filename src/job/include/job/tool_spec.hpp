@@ -24,7 +24,7 @@ namespace subfeed::job {
 // `--tool NAME`: the tool of that name in the settings' tool table (post/tool_table.hpp)
 // becomes "ball:D" and the flute, shank, stick-out and holder the command line left unset;
 // the command line's own win. Returns the table's file when it looked a name up, nothing
-// when the tool was "ball:D" (or not given) already.
+// when the tool was spelt out (ball:D, anything with a colon) or not given.
 [[nodiscard]] Expected<std::optional<std::string>> resolve_tool_name(PlanSettings& settings);
 
 // Ball radius in mm from "ball:D"; an error naming --tool otherwise.
@@ -51,6 +51,15 @@ parse_tool_record(double ball_radius, std::string_view text, const Where& where)
 [[nodiscard]] std::string fixture_record(const geometry::Fixture& fixture);
 [[nodiscard]] Expected<geometry::Fixture> parse_fixture_record(std::string_view text,
                                                                const Where& where);
+
+// The tool and fixture a CL header records (the ball from its CUTTER), or nothing when it
+// records neither; errors name the record's line in `cl_file`.
+struct RecordedTool {
+  geometry::ToolAssembly tool;
+  geometry::Fixture fixture;
+};
+[[nodiscard]] Expected<std::optional<RecordedTool>> recorded_tool(const cl::ClHeader& header,
+                                                                  const std::string& cl_file);
 
 // The TOOL and FIXTURE records of a path planned with `options` (the fixture as the
 // planner settled it: `summary`), into `header`; nothing for a plan of the ball alone.
