@@ -285,6 +285,9 @@ private:
       if (is_rotary_axis(i) && delta > 180.0) {
         count(report.rotary_jumps, report.first_rotary_jump, delta, line_);
       }
+      if (is_rotary_axis(i) && machine_.axes[i]) {
+        note(report.rotary_step[i - 3], delta, line_);
+      }
       const auto& axis = machine_.axes[i];
       // Under G43.5 the control derives the angles from the rounded I J K, which near the
       // pole moves C a little differently from the post's exact axis: allow 2 % there.

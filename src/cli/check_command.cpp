@@ -121,6 +121,17 @@ Expected<void> run_check(const CheckCommandOptions& o, Logger& log) {
   }
   log.info(
       fmt::format("  tool tip feed max {:.1f} mm/min{}", r.max_tip_feed.value, at(r.max_tip_feed)));
+  std::string steps;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (machine.axes[3 + i]) {
+      const auto& f = r.rotary_step[i];
+      steps += fmt::format("{}{} {:.3f} deg{}", steps.empty() ? "" : ", ",
+                           post::axis_letters[3 + i], f.value, at(f));
+    }
+  }
+  if (!steps.empty()) {
+    log.info("  largest rotary step in one feed block: " + steps);
+  }
   log.info(fmt::format("  limit violations {}{}, rotary jumps over 180 deg {}{}, blocks over an "
                        "axis max feed {}{}",
                        r.limit_violations, at(r.first_limit_violation), r.rotary_jumps,

@@ -11,6 +11,7 @@
 #include "post/kinematics.hpp"
 #include "post/machine_config.hpp"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -49,6 +50,9 @@ struct CheckReport {
   Finding first_rotary_jump;
   long over_feed = 0; // feed blocks that ask an axis for more than its max_feed
   Finding first_over_feed;
+  // The largest turn of each rotary axis (A, B, C) in one feed block, deg: how smoothly the
+  // rotary axes follow the tool axis while cutting.
+  std::array<Finding, 3> rotary_step;
   double cutting_minutes = 0.0;
   double allowed_axis_deviation = 0.0; // deg, what the axis deviation was held to
 
