@@ -122,7 +122,9 @@ std::vector<double> lean_fractions(const std::vector<Eigen::Vector3d>& at, const
   const auto s = arc_lengths(at);
   const double per_mm = lean.ramp_deg_per_mm / std::max(lean.turn_deg(), 1e-9);
   // Lowering one point's fraction can lower a neighbour's cone: ramp, check, until stable.
-  for (int round = 0; round < 8; ++round) {
+  // Fractions only fall, each time to a ramp's value or a step below it, so this ends; the
+  // bound is for safety, not reached on the sample parts.
+  for (int round = 0; round < 1000; ++round) {
     const auto before = f;
     ramp(f, s, per_mm);
     bool changed = false;

@@ -27,9 +27,11 @@ constexpr double axis_tolerance_rad = 0.25 * std::numbers::pi / 180.0; // along 
 // mm a pass point keeps beyond the fixture's clearance_min: the move to the next point blends
 // the two poses, and the gate holds the blend to clearance_min.
 constexpr double pass_clearance_extra = 0.05;
-// mm either way a pass's feed direction is taken over when leaning the axis: longer than
-// two crossings near one mesh vertex, short against the pass's curvature.
-constexpr double lean_feed_span_mm = 0.25;
+// Of the ball radius, either way, a pass's feed direction is taken over when leaning the
+// axis: a pass sliced across coarse triangles (the floor band's edge) wanders sideways by a
+// few tenths of a mm, and over 0.25 mm either way that turned the lean 7 degrees between
+// poses on the dome's foot.
+constexpr double lean_feed_span_radii = 0.5;
 // cos 80 deg: a leaned axis keeps the contact within 80 degrees of the tip, on the ball.
 constexpr double max_contact_cos = 0.17364817766693033;
 // mm the ball's bottom keeps over the lowest it may go on the pass along the floor band's
@@ -547,7 +549,7 @@ void ToolpathPlanner::lean_axes(std::vector<PassPoint>& pass, const TriangleTree
     centres.push_back(p.centre);
   }
   const double r = options_.ball_radius;
-  const auto feeds = feed_directions(centres, lean_feed_span_mm);
+  const auto feeds = feed_directions(centres, lean_feed_span_radii * r);
   std::optional<AssemblyClearance> clearance;
   if (options_.whole_tool) {
     clearance.emplace(options_.tool, options_.fixture, design);

@@ -7,14 +7,17 @@
 #include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 using subfeed::testing::has_line;
 using subfeed::testing::has_line_matching;
+using subfeed::testing::line_captures;
 using subfeed::testing::literal;
 using subfeed::testing::run_process;
+using subfeed::testing::split_lines;
 using subfeed::testing::TempDir;
 
 namespace {
@@ -129,4 +132,42 @@ TEST_CASE("check refuses what it cannot replay, naming the line, and needs the t
   CHECK(no_map.err == "subfeed: error: " + no_feed.string() +
                           ".map: comparing with CL data needs the trace map subfeed post writes "
                           "beside the program\n");
+}
+
+TEST_CASE("check fails with exit 2 when a block under tool-centre-point control turns the axis "
+          "off the CL path, the tip staying on it") {
+  TempDir dir;
+  const auto nc = (dir.path() / "dome.nc").string();
+  const auto config = source_dir + "/configs/fanuc-xyzac-trt.toml";
+  const auto cl = source_dir + "/examples/dome-spiral.cl";
+  REQUIRE(run_process({bin, "post", cl, "--machine", config, "--tcp", "angles", "-o", nc})
+              .exit_code == 0);
+  const auto good = run_process({bin, "check", nc, "--machine", config, "--cl", cl});
+  REQUIRE(good.exit_code == 0);
+  // One cutting block's A half a degree off: under G43.4 the tip is where X Y Z say.
+  std::string program = subfeed::testing::read_text(nc);
+  const auto lines = split_lines(program);
+  std::size_t at = std::string::npos;
+  for (std::size_t i = lines.size() / 2; i < lines.size() && at == std::string::npos; ++i) {
+    const auto a = lines[i].find(" A");
+    if (lines[i].starts_with("G1") || (lines[i].starts_with("X") && a != std::string::npos)) {
+      at = i;
+    }
+  }
+  REQUIRE(at != std::string::npos);
+  const auto a = lines[at].find(" A") + 2;
+  const auto end = lines[at].find(' ', a);
+  const double angle = std::stod(lines[at].substr(a, end - a));
+  std::string bad = lines[at];
+  bad.replace(a, end - a, fmt::format("{:.4f}", angle + 0.5));
+  program.replace(program.find(lines[at]), lines[at].size(), bad);
+  std::ofstream(nc) << program;
+  const auto check = run_process({bin, "check", nc, "--machine", config, "--cl", cl});
+  CHECK(check.exit_code == 2);
+  const auto deviation = line_captures(
+      check.out, R"(  against .*: [0-9]+ cutting blocks, tool tip deviation max ([0-9.]+) mm .*, )"
+                 R"(tool axis deviation max ([0-9.]+) deg .*)");
+  REQUIRE(deviation.size() == 3);
+  CHECK(std::stod(deviation[1]) <= 0.002);
+  CHECK(std::stod(deviation[2]) >= 0.4);
 }
