@@ -50,13 +50,16 @@ Expected<std::unique_ptr<ProgramSink>> ProgramSink::create(const MachineConfig& 
 ProgramSink::ProgramSink(const MachineConfig& machine, const PostFileOptions& options,
                          AtomicOutputFile program, AtomicOutputFile map, ProgramTaps taps)
     : program_(std::move(program)), map_(std::move(map)), taps_(std::move(taps)),
-      kinematics_(make_kinematics(machine)),
+      check_block_(options.check_block), kinematics_(make_kinematics(machine)),
       writer_(options.program, machine.axes,
               [this](std::string_view line, long cl_line, bool link) {
                 write_line(line, cl_line, link);
               }),
       post_(machine, *kinematics_, with_program_decimals(options.post, options.program),
-            [this](const MotionBlock& block) {
+            [this](const MotionBlock& block) -> Expected<void> {
+              if (check_block_) {
+                SUBFEED_TRY(check_block_(block));
+              }
               if (taps_.block) {
                 taps_.block(block);
               }

@@ -247,6 +247,17 @@ std::string axis_summary(const geometry::PlanOptions& options, const geometry::P
   return text;
 }
 
+std::string posted_gate_summary(const geometry::GateReport& gate) {
+  std::string text = fmt::format("  posted program: {} poses ({} in rapids) as the machine moves "
+                                 "its joints checked against the part: no cut deeper than {:g} "
+                                 "um, no rapid touching it",
+                                 gate.moves, gate.rapids, gate.tolerance * 1000.0);
+  if (!gate.clearance.empty()) {
+    text += "; the whole tool kept its clearance and stayed above the floor";
+  }
+  return text;
+}
+
 std::string gate_summary(const geometry::GateReport& gate) {
   if (!gate.clearance.empty()) {
     const double searched = gate.clearance_searched;

@@ -31,6 +31,8 @@ void report_out_of_reach(const geometry::PlanSummary& summary, Logger& log);
 
 // The motion gate's line of the summary: how many moves it checked, and against what.
 [[nodiscard]] std::string gate_summary(const geometry::GateReport& gate);
+// The same gate on the posted program's blocks, as the machine moves (job/block_gate.hpp).
+[[nodiscard]] std::string posted_gate_summary(const geometry::GateReport& gate);
 // The tool axis along the passes: how far it turns between poses, and the lead and tilt
 // kept; empty for a vertical tool.
 [[nodiscard]] std::string axis_summary(const geometry::PlanOptions& options,

@@ -2,6 +2,7 @@
 // data to G-code for one machine (postprocessors/post_file.hpp).
 
 #include "command.hpp"
+#include "job/block_gate.hpp"
 #include "job/cl_gate.hpp"
 #include "plan_flags.hpp"
 #include "plan_report.hpp"
@@ -67,12 +68,16 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
   }
   options.look_ahead = !o.no_look_ahead;
   std::optional<geometry::MotionGate> gate;
+  std::optional<BlockGate> blocks;
   if (!o.cage.empty()) {
     SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
     SUBFEED_TRY_ASSIGN(
         auto built, gate_for_cl(o.cage, reader.header(), o.cl, o.setup, o.level, o.gate_tolerance));
     gate.emplace(std::move(built));
     options.check = [&gate](const cl::ClPose& pose) { return gate->check(pose); };
+    // What the machine will do: every block, the post's own moves too.
+    blocks.emplace(machine, gate->sibling(gate->options().tolerance + options.post.tolerance));
+    options.check_block = [&blocks](const post::MotionBlock& b) { return blocks->check(b); };
   } else if (o.setup.any()) { // nothing to set up, but a setup said must be the CL's own
     SUBFEED_TRY_ASSIGN(const auto reader, cl::ClReader::open(o.cl));
     SUBFEED_TRY(agreed_setup(o.setup, reader.header().setup, o.cl));
@@ -89,6 +94,7 @@ Expected<void> run_post(const PostCommandOptions& o, Logger& log) {
                        post::map_path_for(output).string()));
   if (gate) {
     log.info(gate_summary(gate->report()));
+    log.info(posted_gate_summary(blocks->report()));
   }
   return {};
 }

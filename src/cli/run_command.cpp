@@ -68,6 +68,9 @@ void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter&
                        "{:.1f} min",
                        files.cl.string(), t.plan.passes, t.cut_mm, files.nc.string(), t.lines,
                        t.machine_min));
+  if (t.posted_gate.moves > 0) {
+    log.info(posted_gate_summary(t.posted_gate));
+  }
   if (t.plan.times.total_s() > 0.0) { // planned here, not read from CL data
     log.detail(time_summary(t.plan.times, t.plan.solves));
   }

@@ -61,19 +61,22 @@ double achieved_chord(const LimitSurface& surface, const std::vector<int>& rates
 
 } // namespace
 
-MotionGate::MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord,
-                       std::unique_ptr<SurfaceMesh> tool_mesh)
-    : options_(options), mesh_(std::move(mesh)),
-      tree_(std::make_unique<TriangleTree>(mesh_->points, mesh_->triangles)),
-      tool_mesh_(std::move(tool_mesh)) {
+MotionGate::MotionGate(GateOptions options, std::shared_ptr<const Part> part, double chord)
+    : options_(std::move(options)), part_(std::move(part)) {
   report_.chord = chord;
   report_.tolerance = options_.tolerance;
-  if (tool_mesh_) {
-    tool_tree_ = std::make_unique<TriangleTree>(tool_mesh_->points, tool_mesh_->triangles);
-    assembly_ = std::make_unique<AssemblyClearance>(options_.tool, options_.fixture, *tool_tree_);
+  if (part_->tool_tree) {
+    assembly_ =
+        std::make_unique<AssemblyClearance>(options_.tool, options_.fixture, *part_->tool_tree);
     report_.clearance = assembly_->blank();
     report_.clearance_searched = options_.fixture.clearance_min + slack_searched_mm;
   }
+}
+
+MotionGate MotionGate::sibling(double tolerance_mm) const {
+  auto options = options_;
+  options.tolerance = tolerance_mm;
+  return {options, part_, report_.chord};
 }
 
 Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& surface,
@@ -84,15 +87,18 @@ Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& sur
   const double wanted = options.tolerance / 4.0;
   const auto rates = rates_for_tolerance(surface, wanted, most_segments);
   SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates, share));
-  std::unique_ptr<SurfaceMesh> tool_mesh;
+  auto part = std::make_shared<Part>();
+  part->mesh = std::make_unique<SurfaceMesh>(std::move(mesh));
+  part->tree = std::make_unique<TriangleTree>(part->mesh->points, part->mesh->triangles);
   if (options.whole_tool) {
     SUBFEED_TRY_ASSIGN(
         auto coarse,
         mesh_surface(cage, surface, rates_for_tolerance(surface, tool_chord_mm, most_segments)));
-    tool_mesh = std::make_unique<SurfaceMesh>(std::move(coarse));
+    part->tool_mesh = std::make_unique<SurfaceMesh>(std::move(coarse));
+    part->tool_tree =
+        std::make_unique<TriangleTree>(part->tool_mesh->points, part->tool_mesh->triangles);
   }
-  return MotionGate(options, std::make_unique<SurfaceMesh>(std::move(mesh)),
-                    achieved_chord(surface, rates, wanted), std::move(tool_mesh));
+  return MotionGate(options, std::move(part), achieved_chord(surface, rates, wanted));
 }
 
 std::optional<MeshNearest> MotionGate::nearest(const cl::ClPose& from, const cl::ClPose& to,
@@ -112,7 +118,7 @@ std::optional<MeshNearest> MotionGate::nearest(const cl::ClPose& from, const cl:
   Eigen::Vector3d previous = centre(0.0);
   for (int i = 1; i <= pieces; ++i) {
     const Eigen::Vector3d next = centre(static_cast<double>(i) / pieces);
-    if (auto found = tree_->nearest(previous, next, best ? best->distance : limit)) {
+    if (auto found = part_->tree->nearest(previous, next, best ? best->distance : limit)) {
       best = found;
     }
     previous = next;

@@ -30,7 +30,22 @@ double distance(const cl::ClPose& a, const cl::ClPose& b) {
 
 } // namespace
 
-JobPipeline::JobPipeline(JobSpec spec) : spec_(std::move(spec)), lines_(spec_.queue_lines) {}
+namespace {
+
+// The posted blocks' gate from the CL poses': the same part and rules, cuts allowed the
+// post's tolerance deeper (it splits moves only down to that).
+BlockGate block_gate_from(const post::MachineConfig& machine, const geometry::MotionGate& gate,
+                          double post_tolerance_mm) {
+  return {machine, gate.sibling(gate.options().tolerance + post_tolerance_mm)};
+}
+
+} // namespace
+
+JobPipeline::JobPipeline(JobSpec spec) : spec_(std::move(spec)), lines_(spec_.queue_lines) {
+  if (spec_.gate) {
+    block_gate_.emplace(block_gate_from(spec_.machine, *spec_.gate, spec_.post.post.tolerance));
+  }
+}
 
 JobPipeline::~JobPipeline() {
   detach();
@@ -104,6 +119,7 @@ Expected<void> JobPipeline::plan_all() {
                                         .share = [this](double done) { stage_share_ = done; }};
   SUBFEED_TRY_ASSIGN(auto planner, geometry::ToolpathPlanner::prepare(input.cage, input.surface,
                                                                       input.options, observer));
+  block_gate_.emplace(block_gate_from(spec_.machine, planner.gate(), spec_.post.post.tolerance));
   auto header = spec_.header;
   record_tool(header, input.options, planner.summary());
   SUBFEED_TRY_ASSIGN(auto writer, cl::ClWriter::create(spec_.files.cl, header));
@@ -180,8 +196,15 @@ Expected<void> JobPipeline::post_all() {
   post::ProgramTaps taps;
   taps.block = [&](const post::MotionBlock& block) { minutes += model.add(block); };
   taps.line = [&](std::string_view line) { put_line(line, cut_mm, minutes); };
+  auto options = spec_.post;
+  options.check_block = [this](const post::MotionBlock& block) -> Expected<void> {
+    if (!block_gate_) { // no pose reaches the post before it is made
+      return fail(ErrorCode::bad_input, "a posted block came before the part's gate was built");
+    }
+    return block_gate_->check(block);
+  };
   SUBFEED_TRY_ASSIGN(auto sink,
-                     post::ProgramSink::create(spec_.machine, spec_.post, spec_.files.nc, taps));
+                     post::ProgramSink::create(spec_.machine, options, spec_.files.nc, taps));
   const auto run = [&]() -> Expected<void> {
     if (spec_.post.look_ahead && !spec_.plan) {
       // The CL data exists: read it once to choose the start, as `post` does.
@@ -218,6 +241,7 @@ Expected<void> JobPipeline::post_all() {
   totals_.lines = summary.lines;
   totals_.cut_mm = cut_mm;
   totals_.machine_min = minutes;
+  totals_.posted_gate = block_gate_ ? block_gate_->report() : geometry::GateReport{};
   return {};
 }
 

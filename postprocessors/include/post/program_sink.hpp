@@ -33,6 +33,10 @@ struct PostFileOptions {
   // Called with every pose before it is posted; an error ends the post and nothing is
   // written (the motion gate, when the caller has the part).
   std::function<Expected<void>(const cl::ClPose&)> check;
+  // Called with every block the post makes, its own moves included (approach, retract and
+  // turn, unwinding), before it is written: an error ends the post there, so the block
+  // reaches neither the file nor a stream (the whole tool's gate on what the machine does).
+  std::function<Expected<void>(const MotionBlock&)> check_block;
 };
 
 struct PostFileSummary {
@@ -78,6 +82,7 @@ private:
 
   AtomicOutputFile program_, map_;
   ProgramTaps taps_;
+  std::function<Expected<void>(const MotionBlock&)> check_block_;
   std::unique_ptr<Kinematics> kinematics_;
   ProgramWriter writer_;
   PostProcessor post_;

@@ -81,12 +81,23 @@ public:
   [[nodiscard]] const GateOptions& options() const { return options_; }
   // The whole tool against the gate's own mesh, when it has one.
   [[nodiscard]] const AssemblyClearance* assembly() const { return assembly_.get(); }
+  // A gate for another stream of moves (a posted program's, as the machine makes them) on
+  // the same part, meshes shared, under the same rules but `tolerance_mm` for cuts: none of
+  // this gate's moves, its own report. The two may check on two threads at once.
+  [[nodiscard]] MotionGate sibling(double tolerance_mm) const;
 
   static constexpr double least_step_mm = 0.02;
 
 private:
-  MotionGate(GateOptions options, std::unique_ptr<SurfaceMesh> mesh, double chord,
-             std::unique_ptr<SurfaceMesh> tool_mesh);
+  // The part as the gate measures it, shared by siblings; the trees point into the meshes.
+  struct Part {
+    std::unique_ptr<SurfaceMesh> mesh;
+    std::unique_ptr<TriangleTree> tree;
+    // The whole tool is measured on a coarser mesh of its own (chord 5 um).
+    std::unique_ptr<SurfaceMesh> tool_mesh;
+    std::unique_ptr<TriangleTree> tool_tree;
+  };
+  MotionGate(GateOptions options, std::shared_ptr<const Part> part, double chord);
   // The least distance from the mesh to the ball centre's sweep over the move, if under
   // `limit`; with where it is.
   [[nodiscard]] std::optional<MeshNearest> nearest(const cl::ClPose& from, const cl::ClPose& to,
@@ -103,12 +114,8 @@ private:
                                                const MeshNearest& found) const;
 
   GateOptions options_;
-  std::unique_ptr<SurfaceMesh> mesh_; // held by pointer: the tree points into it
-  std::unique_ptr<TriangleTree> tree_;
-  // The whole tool is measured on a coarser mesh of its own (chord 5 um).
-  std::unique_ptr<SurfaceMesh> tool_mesh_;
-  std::unique_ptr<TriangleTree> tool_tree_;
-  std::unique_ptr<AssemblyClearance> assembly_; // refers to tool_tree_
+  std::shared_ptr<const Part> part_;
+  std::unique_ptr<AssemblyClearance> assembly_; // refers to part_->tool_tree
   std::optional<cl::ClPose> last_;
   GateReport report_;
 };

@@ -196,6 +196,8 @@ public:
   [[nodiscard]] Expected<void> run(const Sink& sink, const Progress& progress = {});
 
   [[nodiscard]] const PlanSummary& summary() const { return summary_; }
+  // The gate every pose passes (for a sibling that checks what is made of the poses).
+  [[nodiscard]] const MotionGate& gate() const { return gate_; }
   [[nodiscard]] const SurfaceMesh& mesh() const { return mesh_; }
   [[nodiscard]] Eigen::Vector3d slicing_normal() const { return s_; }
   // The pose the motion gate refused, when run() failed there.

@@ -14,6 +14,7 @@
 #include "cl/cl_pose.hpp"
 #include "drivers/live_program.hpp"
 #include "geometry/toolpath_planner.hpp"
+#include "job/block_gate.hpp"
 #include "post/machine_config.hpp"
 #include "post/post_file.hpp"
 
@@ -54,6 +55,8 @@ struct JobTotals {
   long lines = 0;
   double cut_mm = 0.0;      // feed moves of the CL path
   double machine_min = 0.0; // modelled machine time of the whole program
+  // The posted program's moves as the machine makes them, through the gate (block_gate.hpp).
+  geometry::GateReport posted_gate;
 };
 
 // Totals are estimates while planning goes on (the cutting length of the planes still to
@@ -125,6 +128,10 @@ private:
   LedgerEntry posted_{0, 0.0, 0.0}; // under ledger_mutex_
   std::optional<Error> plan_error_, post_error_;
   JobTotals totals_;
+  // Every posted block passes it before it is written: made from spec_.gate, or from the
+  // planner's gate by plan_all before it hands over the first pose (so the post, which
+  // waits for that pose, sees it).
+  std::optional<BlockGate> block_gate_;
   std::thread planner_, poster_;
 };
 
