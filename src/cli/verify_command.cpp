@@ -144,6 +144,15 @@ Expected<void> run_verify(const VerifyCommandOptions& o, Logger& log) {
                        r.path_length, r.cutting_length, r.passes, r.points, r.ideal_length,
                        r.ideal_length > 0.0 ? r.cutting_length / r.ideal_length : 0.0));
   SUBFEED_TRY(report_whole_tool(o, reader.header(), cage, surface, log));
+  // A rapid is not meant to touch the part at all; a micrometre is the CL data's rounding.
+  if (r.rapids.deepest > 1e-3) {
+    const auto& at = r.rapids.at;
+    return fail(ErrorCode::bad_input,
+                fmt::format("a rapid reaches {:.6f} mm into the part near ({:.3f}, {:.3f}, "
+                            "{:.3f}): on a machine that is a crash",
+                            r.rapids.deepest, at.x(), at.y(), at.z()),
+                {o.cl, 0, {}});
+  }
   for (const auto& picture : {o.svg, o.png}) {
     if (!picture.empty()) {
       log.info("  picture: " + picture +
