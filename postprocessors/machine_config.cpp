@@ -6,7 +6,6 @@
 #include <array>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 namespace subfeed::post {
@@ -295,24 +294,13 @@ Expected<MachineConfig> read_config(const toml::table& root, const std::string& 
 } // namespace
 
 Expected<MachineConfig> parse_machine_config(std::string_view text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    return fail(ErrorCode::bad_input, "TOML syntax: " + std::string(e.description()),
-                {source, static_cast<int>(e.source().begin.line), {}});
-  }
+  SUBFEED_TRY_ASSIGN(const auto root, parse_toml(text, source));
   return read_config(root, source);
 }
 
 Expected<MachineConfig> load_machine_config(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return fail(ErrorCode::bad_input, "cannot open machine config", {path.string(), 0, {}});
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_machine_config(text.str(), path.string());
+  SUBFEED_TRY_ASSIGN(const auto text, read_config_text(path, "machine config"));
+  return parse_machine_config(text, path.string());
 }
 
 std::optional<double> tilt_range_deg(const MachineConfig& machine) {

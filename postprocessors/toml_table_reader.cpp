@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <sstream>
 
 namespace subfeed::post {
 
@@ -46,6 +48,25 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 } // namespace
+
+Expected<std::string> read_config_text(const std::filesystem::path& path, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    return fail(ErrorCode::bad_input, "cannot open " + std::string(what), {path.string(), 0, {}});
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Expected<toml::table> parse_toml(std::string_view text, const std::string& source) {
+  try {
+    return toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    return fail(ErrorCode::bad_input, "TOML syntax: " + std::string(e.description()),
+                {source, static_cast<int>(e.source().begin.line), {}});
+  }
+}
 
 TomlTableReader::TomlTableReader(const toml::table& table, std::string prefix, std::string file,
                                  int line)

@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <optional>
 #include <set>
 #include <string>
@@ -14,6 +15,12 @@
 #include <vector>
 
 namespace subfeed::post {
+
+// The text of a config file; `what` names it in the error ("machine config").
+[[nodiscard]] Expected<std::string> read_config_text(const std::filesystem::path& path,
+                                                     std::string_view what);
+// TOML text parsed, or its syntax error with the file (`source`) and line.
+[[nodiscard]] Expected<toml::table> parse_toml(std::string_view text, const std::string& source);
 
 class TomlTableReader {
 public:

@@ -3,7 +3,6 @@
 #include "toml_table_reader.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 namespace subfeed::post {
@@ -70,13 +69,7 @@ const ToolTableEntry* ToolTable::find(std::string_view name) const {
 }
 
 Expected<ToolTable> parse_tool_table(std::string_view text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    return fail(ErrorCode::bad_input, "TOML syntax: " + std::string(e.description()),
-                {source, static_cast<int>(e.source().begin.line), {}});
-  }
+  SUBFEED_TRY_ASSIGN(const auto root, parse_toml(text, source));
   ToolTable out;
   out.file = source;
   TomlTableReader top(root, "", source, 1);
@@ -95,13 +88,8 @@ Expected<ToolTable> parse_tool_table(std::string_view text, const std::string& s
 }
 
 Expected<ToolTable> load_tool_table(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return fail(ErrorCode::bad_input, "cannot open tool table", {path.string(), 0, {}});
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_tool_table(text.str(), path.string());
+  SUBFEED_TRY_ASSIGN(const auto text, read_config_text(path, "tool table"));
+  return parse_tool_table(text, path.string());
 }
 
 } // namespace subfeed::post

@@ -34,6 +34,18 @@ bool is(const RgbImage& image, int x, int y, std::array<int, 3> rgb) {
   return image.rgb[at] == rgb[0] && image.rgb[at + 1] == rgb[1] && image.rgb[at + 2] == rgb[2];
 }
 
+// The picture written as PNG and read back.
+RgbImage drawn(const VerifyPicture& p, const std::filesystem::path& file) {
+  REQUIRE(write_png(file, p));
+  return testing::read_png(file);
+}
+
+// Whether the map's pixel at (x, y) mm of a 20 x 10 mm part has colour `rgb`: 1/12 mm a
+// cell, 3 pixels a cell, the map 8 pixels in and 30 down, y counted down from 10 mm.
+bool map_pixel_is(const RgbImage& image, double x, double y, std::array<int, 3> rgb) {
+  return is(image, 8 + static_cast<int>(x * 36), 30 + static_cast<int>((10.0 - y) * 36), rgb);
+}
+
 // The longest horizontal run of black pixels in rows [top, bottom).
 int longest_black_run(const RgbImage& image, int top, int bottom) {
   int best = 0;
@@ -107,12 +119,9 @@ TEST_CASE("verify picture, PNG and SVG: surface left uncut is marked by why, in 
   square(10.0, 12.0, LeftUncut::beyond_tilt);
   square(16.0, 18.0, LeftUncut::below_floor);
   const testing::TempDir dir;
-  const auto png = dir.path() / "p.png";
-  REQUIRE(write_png(png, p));
-  const auto image = testing::read_png(png);
-  // Map pixel of (x, y) mm: 1/12 mm a cell, 3 pixels a cell, y from the top at 10 mm.
+  const auto image = drawn(p, dir.path() / "p.png");
   const auto at = [&](double x, double y, std::array<int, 3> rgb) {
-    return is(image, 8 + static_cast<int>(x * 36), 30 + static_cast<int>((10.0 - y) * 36), rgb);
+    return map_pixel_is(image, x, y, rgb);
   };
   CHECK(at(3.0, 3.0, {96, 96, 96}));
   CHECK_FALSE(at(11.0, 3.0, {200, 200, 200})); // cut surface there shows its scallop
@@ -148,11 +157,9 @@ TEST_CASE("verify picture: beyond-tilt and under-floor marks show where no cut s
   }
   p.max_height = 0.01;
   const testing::TempDir dir;
-  const auto png = dir.path() / "p.png";
-  REQUIRE(write_png(png, p));
-  const auto image = testing::read_png(png);
+  const auto image = drawn(p, dir.path() / "p.png");
   const auto at = [&](double x, double y, std::array<int, 3> rgb) {
-    return is(image, 8 + static_cast<int>(x * 36), 30 + static_cast<int>((10.0 - y) * 36), rgb);
+    return map_pixel_is(image, x, y, rgb);
   };
   CHECK(at(5.0, 5.0, {255, 0, 0}));
   CHECK(at(12.5, 5.0, {200, 200, 200}));
