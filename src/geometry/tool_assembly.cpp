@@ -86,6 +86,12 @@ double ToolAssembly::length() const {
   return top;
 }
 
+std::string HolderStage::text() const {
+  return bottom_diameter == top_diameter
+             ? fmt::format("{:g}:{:g}", bottom_diameter, length)
+             : fmt::format("{:g}:{:g}:{:g}", bottom_diameter, top_diameter, length);
+}
+
 std::string ToolAssembly::text() const {
   std::string out = fmt::format("ball {:g}, flutes {:g}, shank {:g}, stick-out {:g}, ",
                                 2.0 * ball_radius, flute_length, shank_diameter, stickout);
@@ -94,9 +100,7 @@ std::string ToolAssembly::text() const {
   } else {
     out += "holder";
     for (const auto& h : holder) {
-      out += h.bottom_diameter == h.top_diameter
-                 ? fmt::format(" {:g}:{:g}", h.bottom_diameter, h.length)
-                 : fmt::format(" {:g}:{:g}:{:g}", h.bottom_diameter, h.top_diameter, h.length);
+      out += " " + h.text();
     }
   }
   return out;

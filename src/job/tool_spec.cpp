@@ -47,10 +47,7 @@ std::optional<geometry::HolderStage> holder_stage(std::string_view text) {
 std::string holder_text(const std::vector<geometry::HolderStage>& holder) {
   std::string out;
   for (const auto& h : holder) {
-    out += out.empty() ? "" : ",";
-    out += h.bottom_diameter == h.top_diameter
-               ? fmt::format("{:g}:{:g}", h.bottom_diameter, h.length)
-               : fmt::format("{:g}:{:g}:{:g}", h.bottom_diameter, h.top_diameter, h.length);
+    out += (out.empty() ? "" : ",") + h.text();
   }
   return out;
 }
@@ -97,15 +94,8 @@ Expected<std::optional<std::string>> resolve_tool_name(PlanSettings& s) {
   s.shank = s.shank > 0.0 ? s.shank : entry->shank.value_or(0.0);
   s.stickout = s.stickout > 0.0 ? s.stickout : entry->stickout.value_or(0.0);
   if (s.holder.empty()) {
-    std::vector<geometry::HolderStage> stages;
     for (const auto& h : entry->holder) {
-      stages.push_back({h.bottom_diameter, h.top_diameter, h.length});
-    }
-    const auto text = holder_text(stages);
-    for (const auto stage : split(text, ',')) {
-      if (!stage.empty()) {
-        s.holder.emplace_back(stage);
-      }
+      s.holder.push_back(geometry::HolderStage{h.bottom_diameter, h.top_diameter, h.length}.text());
     }
   }
   return std::optional<std::string>(table.file + ":" + std::to_string(entry->line));

@@ -21,6 +21,9 @@ struct HolderStage {
   double bottom_diameter = 0.0; // mm, at the end nearer the tip
   double top_diameter = 0.0;    // mm; equal to the bottom one for a cylinder
   double length = 0.0;          // mm along the axis
+
+  // "D:L" for a cylinder, "D1:D2:L" for a cone: as --holder takes it.
+  [[nodiscard]] std::string text() const;
 };
 
 struct ToolBody {
