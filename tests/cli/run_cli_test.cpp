@@ -80,19 +80,32 @@ TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted,
           "[slow][parts]") {
   subfeed::testing::TempDir dir;
   const std::string base = (dir.path() / "seat").string();
-  auto argv = job(base, grblhal);
+  // The tool by its name in the shipped table, with a lead: the journal keeps its sizes.
+  std::vector<std::string> argv{bin,         "run",
+                                seat,        "--machine",
+                                grblhal,     "--tool",
+                                "ball6-er32", "--tools",
+                                std::string(SUBFEED_SOURCE_DIR) + "/configs/tools.toml",
+                                "--lead",    "10",
+                                "--scallop", "0.02",
+                                "-o",        base};
   argv.insert(argv.end(), {"--sim", "--sim-speed", "50", "--sim-baud", "0"});
   const auto r = run_process(argv);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   check_dry_run_verdict(r.out, "controller");
+  CHECK(has_line_matching(r.out, R"(  posted program: [0-9]+ poses \([0-9]+ in rapids\) as the )"
+                                 R"(machine moves its joints checked against the part: .*; the )"
+                                 R"(whole tool kept its clearance and stayed above the floor)"));
   CHECK(has_line_matching(r.out, R"(  first block reached the controller [0-9.]+ s after start, )"
                                  R"(the first move [0-9.]+ s after start)"));
   for (const char* ext : {".cl", ".nc", ".nc.map", ".journal"}) {
     CHECK(std::filesystem::exists(base + ext));
   }
   const auto journal = read_text(base + ".journal");
-  CHECK(has_line_matching(journal, R"(\d+ event job cage=)" + literal(seat) + " .*"));
+  CHECK(has_line_matching(journal, R"(\d+ event job cage=)" + literal(seat) +
+                                       " .* tool=ball:6 .* flute=18 shank=6 stickout=40 "
+                                       "holder=32:40 .* lead=10 tilt=0.*"));
   CHECK(has_line_matching(split_lines(journal).back(), R"(\d+ end done)"));
 }
 
