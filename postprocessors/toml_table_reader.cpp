@@ -179,8 +179,7 @@ Expected<std::vector<double>> TomlTableReader::numbers(std::string_view key, std
   return values;
 }
 
-Expected<std::vector<std::vector<double>>>
-TomlTableReader::number_lists(std::string_view key) {
+Expected<std::vector<std::vector<double>>> TomlTableReader::number_lists(std::string_view key) {
   auto node = required(key, "an array of arrays of numbers");
   if (!node) {
     return std::unexpected(node.error());

@@ -36,7 +36,8 @@ Expected<std::vector<ToolTableHolderStage>> holder_of(TomlTableReader& table) {
   }
   SUBFEED_TRY_ASSIGN(const auto lists, table.number_lists("holder"));
   for (const auto& l : lists) {
-    const bool sizes_ok = std::ranges::all_of(l, [](double v) { return v > 0.0 && v <= largest_size; });
+    const bool sizes_ok =
+        std::ranges::all_of(l, [](double v) { return v > 0.0 && v <= largest_size; });
     if ((l.size() != 2 && l.size() != 3) || !sizes_ok) {
       return table.invalid("holder", "expected stages [D, L] or [D1, D2, L], bottom first, each "
                                      "size above 0 and at most 10000 mm");
@@ -76,8 +77,8 @@ Expected<ToolTable> parse_tool_table(std::string_view text, const std::string& s
   for (const auto& [key, node] : root) {
     const std::string name(key.str());
     SUBFEED_TRY_ASSIGN(auto table, top.table(name));
-    SUBFEED_TRY_ASSIGN(auto tool, read_tool(std::move(table), name,
-                                            static_cast<int>(key.source().begin.line)));
+    SUBFEED_TRY_ASSIGN(
+        auto tool, read_tool(std::move(table), name, static_cast<int>(key.source().begin.line)));
     out.tools.push_back(std::move(tool));
   }
   if (out.tools.empty()) {

@@ -73,9 +73,8 @@ clearance_meter_for(const CheckCommandOptions& o, const cl::ClHeader* header, Lo
   bool floor_at_lowest = false;
   SUBFEED_TRY_ASSIGN(const auto tool, tool_to_check(o, header, floor_at_lowest, log));
   SUBFEED_TRY_ASSIGN(const auto cage,
-                     header != nullptr
-                         ? job::read_part_agreed(o.cage, o.setup, header->setup, o.cl)
-                         : geometry::read_part(o.cage, o.setup.with_defaults()));
+                     header != nullptr ? job::read_part_agreed(o.cage, o.setup, header->setup, o.cl)
+                                       : geometry::read_part(o.cage, o.setup.with_defaults()));
   SUBFEED_TRY_ASSIGN(const auto surface, geometry::LimitSurface::build(cage));
   SUBFEED_TRY_ASSIGN(auto meter, geometry::ClearanceMeter::build(cage, surface, tool.tool,
                                                                  tool.fixture, floor_at_lowest));
@@ -137,8 +136,7 @@ Expected<void> run_check(const CheckCommandOptions& o, Logger& log) {
                        r.limit_violations, at(r.first_limit_violation), r.rotary_jumps,
                        at(r.first_rotary_jump), r.over_feed, at(r.first_over_feed)));
   if (meter) {
-    SUBFEED_TRY(report_clearance(meter->result(), meter->tool(), meter->fixture(),
-                                 o.program, log));
+    SUBFEED_TRY(report_clearance(meter->result(), meter->tool(), meter->fixture(), o.program, log));
   }
   if (!r.passed(o.tolerance)) {
     return fail(ErrorCode::bad_input, "check failed: see the report above", {o.program, 0, {}});

@@ -12,12 +12,11 @@ std::string clearance_point_text(const Eigen::Vector3d& p) {
 }
 
 std::string body_text(const geometry::BodyClearance& b, double searched_mm) {
-  const std::string part =
-      b.body == "ball" ? "cuts the part"
-      : std::isfinite(b.to_part)
-          ? fmt::format("{:.3f} mm from the part near {}", b.to_part,
-                        clearance_point_text(b.part_point))
-          : fmt::format("more than {:g} mm from the part", searched_mm);
+  const std::string part = b.body == "ball" ? "cuts the part"
+                           : std::isfinite(b.to_part)
+                               ? fmt::format("{:.3f} mm from the part near {}", b.to_part,
+                                             clearance_point_text(b.part_point))
+                               : fmt::format("more than {:g} mm from the part", searched_mm);
   const std::string floor = std::isfinite(b.to_floor)
                                 ? fmt::format("lowest {:.3f} mm above the floor (tip at {})",
                                               b.to_floor, clearance_point_text(b.floor_tip))
@@ -27,7 +26,8 @@ std::string body_text(const geometry::BodyClearance& b, double searched_mm) {
 
 } // namespace
 
-Expected<void> report_clearance(const geometry::PathClearance& c, const geometry::ToolAssembly& tool,
+Expected<void> report_clearance(const geometry::PathClearance& c,
+                                const geometry::ToolAssembly& tool,
                                 const geometry::Fixture& fixture, const std::string& file,
                                 job::Logger& log) {
   log.info(fmt::format("  whole tool: {}; floor {}, stock {:g} mm below it, clearance {:g} mm; "

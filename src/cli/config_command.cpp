@@ -69,9 +69,10 @@ void describe(const post::ToolTable& table, Logger& log) {
     std::string holder;
     for (const auto& h : t.holder) {
       holder += holder.empty() ? ", holder " : " then ";
-      holder += h.bottom_diameter == h.top_diameter
-                    ? fmt::format("{:g} x {:g}", h.bottom_diameter, h.length)
-                    : fmt::format("{:g} to {:g} x {:g}", h.bottom_diameter, h.top_diameter, h.length);
+      holder +=
+          h.bottom_diameter == h.top_diameter
+              ? fmt::format("{:g} x {:g}", h.bottom_diameter, h.length)
+              : fmt::format("{:g} to {:g} x {:g}", h.bottom_diameter, h.top_diameter, h.length);
     }
     log.info(fmt::format("  {} (line {}): {} {:g}{}{}{}{}", t.name, t.line, t.cutter, t.diameter,
                          size("flutes", t.flute, "3D"), size("shank", t.shank, "D"),
@@ -116,8 +117,7 @@ void add_config_command(CLI::App& app, Action& chosen) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand(
       "config", "Validate machine configs and tool tables and show what they say");
-  cmd->add_option("files", *files,
-                  "Machine configs (with a [machine] table) or tool tables (TOML)")
+  cmd->add_option("files", *files, "Machine configs (with a [machine] table) or tool tables (TOML)")
       ->required()
       ->type_name("FILE.toml");
   cmd->callback(

@@ -228,16 +228,16 @@ std::string axis_summary(const geometry::PlanOptions& options, const geometry::P
     return {};
   }
   const auto& a = s.axis_steps;
-  std::string text = fmt::format("  tool axis along passes: turns {:.2f} deg between poses on "
-                                 "average, at most {:.2f} deg (near ({:.2f}, {:.2f}, {:.2f}) mm)",
-                                 a.mean_deg, a.largest_deg, a.largest_at.x(), a.largest_at.y(),
-                                 a.largest_at.z());
+  std::string text =
+      fmt::format("  tool axis along passes: turns {:.2f} deg between poses on "
+                  "average, at most {:.2f} deg (near ({:.2f}, {:.2f}, {:.2f}) mm)",
+                  a.mean_deg, a.largest_deg, a.largest_at.x(), a.largest_at.y(), a.largest_at.z());
   const auto& l = s.lean;
   if (options.lean.any() && l.points > 0) {
-    text += fmt::format("; lead {:g} deg, tilt {:g} deg kept in full at {:.1f} % of {} points",
-                        options.lean.lead_deg, options.lean.tilt_deg,
-                        100.0 * static_cast<double>(l.full) / static_cast<double>(l.points),
-                        l.points);
+    text +=
+        fmt::format("; lead {:g} deg, tilt {:g} deg kept in full at {:.1f} % of {} points",
+                    options.lean.lead_deg, options.lean.tilt_deg,
+                    100.0 * static_cast<double>(l.full) / static_cast<double>(l.points), l.points);
     if (l.reduced > 0) {
       text += fmt::format(", eased toward the unleaned axis at {} (down to {:.0f} %) where the "
                           "full lean would collide, pass the tilt limit or cut off the ball",

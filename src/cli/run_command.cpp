@@ -82,7 +82,7 @@ void report_totals(const JobTotals& t, const JobFiles& files, const JobReporter&
 }
 
 Expected<void> run_job(JobRecord o, Logger& log) {
-  block_stop_signals(); // before any thread starts
+  block_stop_signals();                   // before any thread starts
   SUBFEED_TRY(resolve_tool(o.plan, log)); // the journal keeps the sizes, not the name
   SUBFEED_TRY_ASSIGN(auto spec, job_spec(o, log));
   const auto machine = spec.machine;

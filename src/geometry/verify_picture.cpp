@@ -19,8 +19,8 @@ constexpr int cells_across = 240; // heat-map cells along the longer side
 constexpr int cell_pixels = 3;
 
 // A cell's value is a scallop height (>= 0) or one of these marks.
-constexpr double empty_mark = -1.0, gouge_mark = -2.0, no_ball_mark = -3.0,
-                 beyond_tilt_mark = -4.0, below_floor_mark = -5.0;
+constexpr double empty_mark = -1.0, gouge_mark = -2.0, no_ball_mark = -3.0, beyond_tilt_mark = -4.0,
+                 below_floor_mark = -5.0;
 
 double mark_of(LeftUncut why) {
   switch (why) {
@@ -37,12 +37,12 @@ double mark_of(LeftUncut why) {
 // Which of two values a cell shows (verify_picture.hpp): the higher rank, and of two
 // heights the worse.
 int rank_of(double v) {
-  return v >= 0.0                 ? 3
-         : v == gouge_mark        ? 5
-         : v == no_ball_mark      ? 4
-         : v == beyond_tilt_mark  ? 2
-         : v == below_floor_mark  ? 1
-                                  : 0;
+  return v >= 0.0                ? 3
+         : v == gouge_mark       ? 5
+         : v == no_ball_mark     ? 4
+         : v == beyond_tilt_mark ? 2
+         : v == below_floor_mark ? 1
+                                 : 0;
 }
 
 double merged(double a, double b) {
@@ -220,7 +220,7 @@ Layout layout_of(const Raster& r, const VerifyPicture& picture) {
   const int swatch_lines = static_cast<int>(swatches.size());
   const int body_h = std::max(l.map_h, 120 + swatch_lines * (line + Layout::pad));
   l.bar_x = l.map_x + l.map_w + 2 * Layout::pad;
-  l.bar_y = l.map_y + line + 2 * Layout::pad;                         // below the bar's own heading
+  l.bar_y = l.map_y + line + 2 * Layout::pad; // below the bar's own heading
   l.bar_h = body_h - (line + 2 * Layout::pad) -
             swatch_lines * (line + Layout::pad); // and above the swatches
   l.scale_mm = nice_length(r.width * r.cell);

@@ -63,9 +63,10 @@ Expected<void> BlockGate::check(const post::MotionBlock& block) {
       }
       if (block.vector) {
         const auto v = unit(*block.vector);
-        p.axis = t >= 1.0 || !was_known ? v : unit({last_.axis[0] + t * (v[0] - last_.axis[0]),
-                                                    last_.axis[1] + t * (v[1] - last_.axis[1]),
-                                                    last_.axis[2] + t * (v[2] - last_.axis[2])});
+        p.axis = t >= 1.0 || !was_known ? v
+                                        : unit({last_.axis[0] + t * (v[0] - last_.axis[0]),
+                                                last_.axis[1] + t * (v[1] - last_.axis[1]),
+                                                last_.axis[2] + t * (v[2] - last_.axis[2])});
       }
     }
     return p;
@@ -74,8 +75,8 @@ Expected<void> BlockGate::check(const post::MotionBlock& block) {
   if (was_known && block.motion == post::Motion::rapid) {
     samples = rapid_samples;
     for (std::size_t r = 3; r < 6; ++r) {
-      samples = std::max(samples, static_cast<int>(std::ceil(std::abs(joints_[r] - from[r]) /
-                                                             rapid_turn_deg)));
+      samples = std::max(
+          samples, static_cast<int>(std::ceil(std::abs(joints_[r] - from[r]) / rapid_turn_deg)));
     }
   }
   for (int k = 1; k <= samples; ++k) {

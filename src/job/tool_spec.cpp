@@ -217,9 +217,9 @@ Expected<std::optional<RecordedTool>> recorded_tool(const cl::ClHeader& header,
   SUBFEED_TRY_ASSIGN(out.tool,
                      parse_tool_record(header.cutter.diameter / 2, records.tool,
                                        {cl_file, static_cast<int>(records.tool_line), {}}));
-  SUBFEED_TRY_ASSIGN(out.fixture,
-                     parse_fixture_record(records.fixture,
-                                          {cl_file, static_cast<int>(records.fixture_line), {}}));
+  SUBFEED_TRY_ASSIGN(
+      out.fixture,
+      parse_fixture_record(records.fixture, {cl_file, static_cast<int>(records.fixture_line), {}}));
   return std::optional<RecordedTool>(std::move(out));
 }
 

@@ -348,8 +348,7 @@ TEST_CASE("plan refused by the motion gate writes no CL file, names the line and
   CHECK(std::filesystem::exists(cl));
 }
 
-TEST_CASE("verify tells a rapid through the part from cutting gouges, and fails on it",
-          "[unit]") {
+TEST_CASE("verify tells a rapid through the part from cutting gouges, and fails on it", "[unit]") {
   // Over the plane z = 0: one pass on it, then a rapid whose ball ends 1 mm below it.
   TempDir dir;
   const auto cl = dir.write("through.cl", subfeed::testing::rapid_through_plane_cl);
@@ -360,8 +359,8 @@ TEST_CASE("verify tells a rapid through the part from cutting gouges, and fails 
                                  ": a rapid reaches 1.000000 mm into the part near (-10.000, "
                                  "5.000, 0.000): on a machine that is a crash"));
   const auto sound = dir.write("sound.cl", subfeed::testing::rapid_through_plane_sound_part_cl);
-  CHECK(run_process({bin, "verify", source_dir + "/examples/plane.obj", sound.string(), "--tool",
-                     "ball:6"})
+  CHECK(run_process(
+            {bin, "verify", source_dir + "/examples/plane.obj", sound.string(), "--tool", "ball:6"})
             .exit_code == 0);
   const auto lines = split_lines(verify.out);
   const auto gouges = std::ranges::find(lines, "  gouges 0 samples deeper than 0.1 um, deepest "

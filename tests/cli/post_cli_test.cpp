@@ -7,8 +7,8 @@
 #include "support/text_file.hpp"
 
 #include <catch2/catch.hpp>
-#include <fmt/format.h>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 
@@ -144,8 +144,9 @@ TEST_CASE("check fails with exit 2 when a block under tool-centre-point control 
   const auto nc = (dir.path() / "dome.nc").string();
   const auto config = source_dir + "/configs/fanuc-xyzac-trt.toml";
   const auto cl = source_dir + "/examples/dome-spiral.cl";
-  REQUIRE(run_process({bin, "post", cl, "--machine", config, "--tcp", "angles", "-o", nc})
-              .exit_code == 0);
+  REQUIRE(
+      run_process({bin, "post", cl, "--machine", config, "--tcp", "angles", "-o", nc}).exit_code ==
+      0);
   const auto good = run_process({bin, "check", nc, "--machine", config, "--cl", cl});
   REQUIRE(good.exit_code == 0);
   // One cutting block's A half a degree off: under G43.4 the tip is where X Y Z say.

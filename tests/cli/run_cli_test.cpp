@@ -81,14 +81,12 @@ TEST_CASE("run --sim on the seat for a grblHAL A/C trunnion: executed as posted,
   subfeed::testing::TempDir dir;
   const std::string base = (dir.path() / "seat").string();
   // The tool by its name in the shipped table, with a lead: the journal keeps its sizes.
-  std::vector<std::string> argv{bin,         "run",
-                                seat,        "--machine",
-                                grblhal,     "--tool",
-                                "ball6-er32", "--tools",
-                                std::string(SUBFEED_SOURCE_DIR) + "/configs/tools.toml",
-                                "--lead",    "10",
-                                "--scallop", "0.02",
-                                "-o",        base};
+  std::vector<std::string> argv{
+      bin,          "run",     seat,
+      "--machine",  grblhal,   "--tool",
+      "ball6-er32", "--tools", std::string(SUBFEED_SOURCE_DIR) + "/configs/tools.toml",
+      "--lead",     "10",      "--scallop",
+      "0.02",       "-o",      base};
   argv.insert(argv.end(), {"--sim", "--sim-speed", "50", "--sim-baud", "0"});
   const auto r = run_process(argv);
   INFO(r.err);

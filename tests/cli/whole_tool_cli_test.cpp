@@ -9,8 +9,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fmt/format.h>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <string>
 
@@ -98,19 +98,19 @@ TEST_CASE("the dome with a 32 mm holder on a 40 mm stick-out: every body clear, 
 TEST_CASE("the dome and the seat with a lead and a tilt: every body still clear, the lean eased "
           "where the holder would reach the floor, and said so",
           "[parts][slow]") {
-  plan_and_verify_clear("dome.obj",
-                        {"--tool", "ball:6", "--shank", "6", "--stickout", "40", "--holder",
-                         "32:40", "--lead", "20"},
-                        {"flutes", "shank", "holder 1"}, 0.05);
+  plan_and_verify_clear(
+      "dome.obj",
+      {"--tool", "ball:6", "--shank", "6", "--stickout", "40", "--holder", "32:40", "--lead", "20"},
+      {"flutes", "shank", "holder 1"}, 0.05);
   plan_and_verify_clear("seat.obj",
                         {"--tool", "ball:2", "--shank", "2", "--stickout", "20", "--holder",
                          "20:30", "--lead", "-10", "--tilt", "10", "--direction", "y"},
                         {"flutes", "shank", "holder 1"}, 0.03);
   TempDir dir;
-  const auto planned = run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool",
-                                    "ball:6", "--shank", "6", "--stickout", "40", "--holder",
-                                    "32:40", "--lead", "20", "--scallop", "0.05", "-o",
-                                    (dir.path() / "d.cl").string()});
+  const auto planned =
+      run_process({bin, "plan", source_dir + "/examples/dome.obj", "--tool", "ball:6", "--shank",
+                   "6", "--stickout", "40", "--holder", "32:40", "--lead", "20", "--scallop",
+                   "0.05", "-o", (dir.path() / "d.cl").string()});
   REQUIRE(planned.exit_code == 0);
   const auto eased = line_captures(
       planned.out, R"(  tool axis along passes: turns [0-9.]+ deg between poses on average, at )"
@@ -170,11 +170,12 @@ TEST_CASE("a bad tool or fixture is one line naming the option, and nothing is w
                     "subfeed --help)\n");
   const auto fixed = plan({"--tilt", "5", "--axis", "fixed"});
   CHECK(fixed.exit_code == 1);
-  CHECK(fixed.err == "subfeed: error: --tilt: a vertical tool (--axis fixed) cannot lead or tilt\n");
-  const auto router = run_process({bin, "run", source_dir + "/examples/plane.obj", "--machine",
-                                   source_dir + "/configs/grbl-router-3axis.toml", "--tool",
-                                   "ball:6", "--scallop", "0.05", "--lead", "10", "--sim", "-o",
-                                   (dir.path() / "router").string()});
+  CHECK(fixed.err ==
+        "subfeed: error: --tilt: a vertical tool (--axis fixed) cannot lead or tilt\n");
+  const auto router =
+      run_process({bin, "run", source_dir + "/examples/plane.obj", "--machine",
+                   source_dir + "/configs/grbl-router-3axis.toml", "--tool", "ball:6", "--scallop",
+                   "0.05", "--lead", "10", "--sim", "-o", (dir.path() / "router").string()});
   CHECK(router.exit_code == 1);
   CHECK(router.err == "subfeed: error: " + source_dir +
                           "/configs/grbl-router-3axis.toml: --lead: a three-axis machine holds "
@@ -218,8 +219,9 @@ TEST_CASE("a path whose recorded holder would hit the floor is refused by post -
                     R"(break the fixture's rules, .*holder 1 goes below its floor limit .*)"));
 }
 
-TEST_CASE("a tool by name (--tool NAME) comes from the tool table, the flags beside it win, and the CL "
-          "data records the sizes, not the name") {
+TEST_CASE(
+    "a tool by name (--tool NAME) comes from the tool table, the flags beside it win, and the CL "
+    "data records the sizes, not the name") {
   TempDir dir;
   const auto table = dir.path() / "tools.toml";
   {
@@ -244,17 +246,17 @@ TEST_CASE("a tool by name (--tool NAME) comes from the tool table, the flags bes
   CHECK(text.find("\nPPRINT TOOL flute=20 shank=8 stickout=50 holder=30:40:25,60:10\n") !=
         std::string::npos);
   // The same tool spelt out on the command line plans the same path.
-  const auto spelt = plan("spelt.cl", {"--tool", "ball:6", "--flute", "20", "--shank", "8",
-                                       "--stickout", "50", "--holder", "30:40:25", "--holder",
-                                       "60:10"});
+  const auto spelt =
+      plan("spelt.cl", {"--tool", "ball:6", "--flute", "20", "--shank", "8", "--stickout", "50",
+                        "--holder", "30:40:25", "--holder", "60:10"});
   REQUIRE(spelt.exit_code == 0);
   CHECK(subfeed::testing::read_text(dir.path() / "spelt.cl") == text);
-  const auto overridden =
-      plan("over.cl", {"--tool", "long6", "--tools", table.string(), "--stickout", "30",
-                       "--holder", "25:20"});
+  const auto overridden = plan("over.cl", {"--tool", "long6", "--tools", table.string(),
+                                           "--stickout", "30", "--holder", "25:20"});
   REQUIRE(overridden.exit_code == 0);
   CHECK(subfeed::testing::read_text(dir.path() / "over.cl")
-            .find("\nPPRINT TOOL flute=20 shank=8 stickout=30 holder=25:20\n") != std::string::npos);
+            .find("\nPPRINT TOOL flute=20 shank=8 stickout=30 holder=25:20\n") !=
+        std::string::npos);
   // configs/tools.toml is the default, from where the user stands (the project's top here).
   const auto shipped = run_process(
       {"/bin/sh", "-c",
@@ -263,18 +265,20 @@ TEST_CASE("a tool by name (--tool NAME) comes from the tool table, the flags bes
            (dir.path() / "shipped.cl").string() + "'"});
   REQUIRE(shipped.exit_code == 0);
   CHECK(subfeed::testing::read_text(dir.path() / "shipped.cl")
-            .find("\nPPRINT TOOL flute=18 shank=6 stickout=40 holder=32:40\n") != std::string::npos);
+            .find("\nPPRINT TOOL flute=18 shank=6 stickout=40 holder=32:40\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("a tool name the table lacks, a missing table and a bad table are one line each, and "
           "nothing is written") {
   TempDir dir;
   const auto cl = (dir.path() / "x.cl").string();
-  const auto table = dir.write("tools.toml", "[a]\ncutter = \"ball\"\ndiameter = 6\n"
-                                             "[b]\ncutter = \"ball\"\ndiameter = 4\nholder = [[1]]\n");
+  const auto table =
+      dir.write("tools.toml", "[a]\ncutter = \"ball\"\ndiameter = 6\n"
+                              "[b]\ncutter = \"ball\"\ndiameter = 4\nholder = [[1]]\n");
   const auto plan = [&](const std::string& tool, const std::string& tools) {
-    return run_process({bin, "plan", source_dir + "/examples/plane.obj", "--tool", tool,
-                        "--tools", tools, "--scallop", "0.05", "-o", cl});
+    return run_process({bin, "plan", source_dir + "/examples/plane.obj", "--tool", tool, "--tools",
+                        tools, "--scallop", "0.05", "-o", cl});
   };
   const auto missing = plan("c", table.string());
   CHECK(missing.exit_code == 2);
@@ -296,8 +300,7 @@ TEST_CASE("a tool name the table lacks, a missing table and a bad table are one 
   const auto config = run_process({bin, "config", good.string()});
   CHECK(config.exit_code == 0);
   CHECK(has_line(config.out, good.string() + ": tool table, 2 tools"));
-  CHECK(has_line(config.out,
-                 "  b (line 4): ball 4, flutes 3D, shank D, stick-out 4D, no holder"));
+  CHECK(has_line(config.out, "  b (line 4): ball 4, flutes 3D, shank D, stick-out 4D, no holder"));
 }
 
 namespace {
@@ -355,8 +358,8 @@ TEST_CASE("check with a cage: every body measured against the part and the floor
                               R"(fixture's rules, the first in the move to line [0-9]+: the )"
                               R"(holder 1 .*)"));
   // Without a tool there is nothing to measure: the flags or the CL data's records.
-  const auto bare = run_process({bin, "check", (dir.path() / "upright.nc").string(), "--machine",
-                                 machine, "--cage", plane});
+  const auto bare = run_process(
+      {bin, "check", (dir.path() / "upright.nc").string(), "--machine", machine, "--cage", plane});
   CHECK(bare.exit_code == 1);
   CHECK(bare.err == "subfeed: error: --cage: the whole tool is needed: give --tool (with "
                     "--shank, --stickout, --holder), or --cl with CL data that records it "

@@ -22,10 +22,10 @@ using geometry::AxisLean;
 
 namespace {
 
-constexpr double deg = std::numbers::pi / 180.0;
+constexpr double lean_deg_rad = std::numbers::pi / 180.0;
 
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / deg;
+double lean_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / lean_deg_rad;
 }
 
 } // namespace
@@ -33,13 +33,16 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 TEST_CASE("lean: a vertical axis fed along +X leads toward +X and tilts toward +Y (left)") {
   const Eigen::Vector3d z(0, 0, 1), x(1, 0, 0);
   const auto led = geometry::leaned_axis(z, x, {15.0, 0.0}, 1.0);
-  CHECK((led - Eigen::Vector3d(std::sin(15 * deg), 0, std::cos(15 * deg))).norm() < 1e-12);
+  CHECK(
+      (led - Eigen::Vector3d(std::sin(15 * lean_deg_rad), 0, std::cos(15 * lean_deg_rad))).norm() <
+      1e-12);
   const auto lag = geometry::leaned_axis(z, x, {-15.0, 0.0}, 1.0);
   CHECK(lag.x() < 0.0);
   const auto tilted = geometry::leaned_axis(z, x, {0.0, 10.0}, 1.0);
-  CHECK((tilted - Eigen::Vector3d(0, std::sin(10 * deg), std::cos(10 * deg))).norm() < 1e-12);
+  CHECK((tilted - Eigen::Vector3d(0, std::sin(10 * lean_deg_rad), std::cos(10 * lean_deg_rad)))
+            .norm() < 1e-12);
   const auto half = geometry::leaned_axis(z, x, {20.0, 0.0}, 0.5);
-  CHECK(angle_deg(half, z) == Approx(10.0).margin(1e-9));
+  CHECK(lean_angle_deg(half, z) == Approx(10.0).margin(1e-9));
   // A feed along the axis has no direction to lean in; fraction 0 leaves it alone.
   CHECK(geometry::leaned_axis(z, z, {15.0, 10.0}, 1.0) == z);
   CHECK(geometry::leaned_axis(z, x, {15.0, 10.0}, 0.0) == z);
@@ -48,21 +51,22 @@ TEST_CASE("lean: a vertical axis fed along +X leads toward +X and tilts toward +
 TEST_CASE("lean: for any axis and feed, the turn is acos(cos L cos T), ahead and left as signed") {
   const double leans[][2] = {{15, 0}, {0, -10}, {-10, 10}, {30, 20}, {-45, -45}};
   for (int k = 0; k < 200; ++k) {
-    const Eigen::Vector3d axis = Eigen::Vector3d(std::sin(k * 0.7), std::cos(k * 1.3),
-                                                 1.5 + std::sin(k * 0.4))
-                                     .normalized();
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(std::sin(k * 0.7), std::cos(k * 1.3), 1.5 + std::sin(k * 0.4)).normalized();
     const Eigen::Vector3d feed(std::cos(k * 0.9), std::sin(k * 0.9), 0.3 * std::sin(k * 2.1));
     const auto& l = leans[k % 5];
     const AxisLean lean{l[0], l[1]};
     const auto a = geometry::leaned_axis(axis, feed, lean, 1.0);
     INFO("k " << k);
     CHECK(a.norm() == Approx(1.0).margin(1e-12));
-    CHECK(angle_deg(a, axis) ==
-          Approx(std::acos(std::cos(l[0] * deg) * std::cos(l[1] * deg)) / deg).margin(1e-7));
+    CHECK(lean_angle_deg(a, axis) ==
+          Approx(std::acos(std::cos(l[0] * lean_deg_rad) * std::cos(l[1] * lean_deg_rad)) /
+                 lean_deg_rad)
+              .margin(1e-7));
     const Eigen::Vector3d ahead = (feed - feed.dot(axis) * axis).normalized();
     const Eigen::Vector3d left = axis.cross(ahead);
-    CHECK(a.dot(left) == Approx(std::sin(l[1] * deg)).margin(1e-12));
-    CHECK(std::atan2(a.dot(ahead), a.dot(axis)) / deg == Approx(l[0]).margin(1e-7));
+    CHECK(a.dot(left) == Approx(std::sin(l[1] * lean_deg_rad)).margin(1e-12));
+    CHECK(std::atan2(a.dot(ahead), a.dot(axis)) / lean_deg_rad == Approx(l[0]).margin(1e-7));
   }
 }
 
@@ -79,7 +83,7 @@ TEST_CASE("lean: the feed direction along a circle is its tangent, ends included
       const Eigen::Vector3d tangent(-std::sin(t), std::cos(t), 0.0);
       INFO("radius " << radius << ", point " << i);
       // 1.5 mm either way: the chord's direction, within half the arc's turn of the tangent.
-      CHECK(angle_deg(dirs[i], tangent) <= 1.5 / radius / deg + 1e-6);
+      CHECK(lean_angle_deg(dirs[i], tangent) <= 1.5 / radius / lean_deg_rad + 1e-6);
     }
   }
 }
@@ -90,7 +94,8 @@ TEST_CASE("lean: fractions are whole where the rules allow, stepped and ramped w
   for (int i = 0; i <= 400; ++i) {
     at.emplace_back(i * 0.05, 0.0, 0.0); // 20 mm, 0.05 mm apart
   }
-  const AxisLean lean{20.0, 0.0, 2.0}; // 2 deg/mm of a 20 deg lean: 0.1 of it a mm
+  const AxisLean lean{20.0, 0.0,
+                      2.0}; // 2 lean_deg_rad/mm of a 20 lean_deg_rad lean: 0.1 of it a mm
   // Between x = 8 and 10 mm at most a quarter of the lean keeps the rules; at 15 mm none.
   const auto keeps = [&](std::size_t i, double f) {
     REQUIRE(f > 0.0); // none is the caller's axis: never asked
@@ -152,13 +157,13 @@ TEST_CASE("lean on exact surfaces, every pattern: the lead and tilt asked for, s
   const LeanCase cases[] = {
       {"dome", -0.03, -0.02, "x", 0.0, 15.0, 0.0},
       {"dome", -0.03, -0.02, "y", 90.0, 0.0, -10.0},
-      {"dome", -0.03, -0.02, "30 deg", 30.0, -10.0, 10.0},
+      {"dome", -0.03, -0.02, "30 lean_deg_rad", 30.0, -10.0, 10.0},
       {"dome", -0.03, -0.02, "concentric", -1.0, 15.0, 0.0},
       {"saddle", 0.02, -0.03, "x", 0.0, -10.0, 10.0},
       {"saddle", 0.02, -0.03, "y", 90.0, 15.0, 0.0},
-      {"saddle", 0.02, -0.03, "30 deg", 30.0, 0.0, -10.0},
+      {"saddle", 0.02, -0.03, "30 lean_deg_rad", 30.0, 0.0, -10.0},
       {"bowl", 0.03, 0.02, "x", 0.0, 0.0, -10.0},
-      {"bowl", 0.03, 0.02, "30 deg", 30.0, 15.0, 0.0},
+      {"bowl", 0.03, 0.02, "30 lean_deg_rad", 30.0, 15.0, 0.0},
       {"bowl", 0.03, 0.02, "concentric", -1.0, -10.0, 10.0},
   };
   constexpr double z0 = 20.0, r = 3.0, h = 0.03;
@@ -214,12 +219,12 @@ TEST_CASE("lean on exact surfaces, every pattern: the lead and tilt asked for, s
       const Eigen::Vector3d ahead = (feed - feed.dot(n) * n).normalized();
       const Eigen::Vector3d left = n.cross(ahead);
       const Eigen::Vector3d axis(p.axis[0], p.axis[1], p.axis[2]);
-      const double lead = std::atan2(axis.dot(ahead), axis.dot(n)) / deg;
-      const double tilt = std::asin(std::clamp(axis.dot(left), -1.0, 1.0)) / deg;
+      const double lead = std::atan2(axis.dot(ahead), axis.dot(n)) / lean_deg_rad;
+      const double tilt = std::asin(std::clamp(axis.dot(left), -1.0, 1.0)) / lean_deg_rad;
       ++measured;
       as_asked += std::abs(lead - c.lead) <= 1.5 && std::abs(tilt - c.tilt) <= 1.5 ? 1 : 0;
     }
-    INFO(as_asked << " of " << measured << " poses within 1.5 deg of the lean asked");
+    INFO(as_asked << " of " << measured << " poses within 1.5 lean_deg_rad of the lean asked");
     REQUIRE(measured > 100);
     CHECK(as_asked >= measured * 95 / 100);
     geometry::VerifyOptions verify;

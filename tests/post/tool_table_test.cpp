@@ -8,7 +8,7 @@ using subfeed::post::parse_tool_table;
 namespace {
 
 // Line numbers are part of the expected messages: keep the layout.
-const std::string two = R"([slim]
+const std::string two_tools = R"([slim]
 cutter = "ball"
 diameter = 2.0
 shank = 4
@@ -19,13 +19,13 @@ cutter = "ball"
 diameter = 6
 )";
 
-std::string replace(std::string text, const std::string& from, const std::string& to) {
+std::string with_replaced(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   REQUIRE(at != std::string::npos);
   return text.replace(at, from.size(), to);
 }
 
-std::string error_of(const std::string& text) {
+std::string table_error(const std::string& text) {
   const auto table = parse_tool_table(text, "tools.toml");
   REQUIRE_FALSE(table);
   return table.error().describe();
@@ -35,7 +35,7 @@ std::string error_of(const std::string& text) {
 
 TEST_CASE("tool table: every tool by name, its sizes, cones and cylinders, unset sizes left "
           "to the defaults") {
-  const auto table = parse_tool_table(two, "tools.toml");
+  const auto table = parse_tool_table(two_tools, "tools.toml");
   REQUIRE(table);
   REQUIRE(table->tools.size() == 2);
   const auto* slim = table->find("slim");
@@ -61,24 +61,28 @@ TEST_CASE("tool table: every tool by name, its sizes, cones and cylinders, unset
 }
 
 TEST_CASE("tool table: each mistake is one error naming the line and the dotted key") {
-  CHECK(error_of(replace(two, "shank = 4", "shnk = 4")) == "tools.toml:4: slim.shnk: unknown key");
-  CHECK(error_of(replace(two, "diameter = 6", "diameter = 0")) ==
+  CHECK(table_error(with_replaced(two_tools, "shank = 4", "shnk = 4")) ==
+        "tools.toml:4: slim.shnk: unknown key");
+  CHECK(table_error(with_replaced(two_tools, "diameter = 6", "diameter = 0")) ==
         "tools.toml:9: plain.diameter: 0 mm is outside 0 (excluded) .. 10000 mm");
-  CHECK(error_of(replace(two, "diameter = 6\n", "")) ==
+  CHECK(table_error(with_replaced(two_tools, "diameter = 6\n", "")) ==
         "tools.toml:7: plain.diameter: missing required key (a number)");
-  CHECK(error_of(replace(two, "cutter = \"ball\"\ndiameter = 6", "cutter = \"flat\"\ndiameter = 6")) ==
+  CHECK(table_error(with_replaced(two_tools, "cutter = \"ball\"\ndiameter = 6",
+                                  "cutter = \"flat\"\ndiameter = 6")) ==
         "tools.toml:8: plain.cutter: 'flat' is not one of ball");
-  CHECK(error_of(replace(two, "[50, 20]", "[50, 20, 1, 2]")) ==
+  CHECK(table_error(with_replaced(two_tools, "[50, 20]", "[50, 20, 1, 2]")) ==
         "tools.toml:6: slim.holder: expected stages [D, L] or [D1, D2, L], bottom first, each "
         "size above 0 and at most 10000 mm");
-  CHECK(error_of(replace(two, "[50, 20]", "[50, -20]")).starts_with("tools.toml:6: slim.holder: "));
-  CHECK(error_of(replace(two, "holder = [[20.0, 32.0, 30.0], [50, 20]]", "holder = 32")) ==
+  CHECK(table_error(with_replaced(two_tools, "[50, 20]", "[50, -20]"))
+            .starts_with("tools.toml:6: slim.holder: "));
+  CHECK(table_error(
+            with_replaced(two_tools, "holder = [[20.0, 32.0, 30.0], [50, 20]]", "holder = 32")) ==
         "tools.toml:6: slim.holder: expected an array of arrays of numbers, got an integer");
-  CHECK(error_of(replace(two, "stickout = 20.0", "stickout = \"20\"")) ==
+  CHECK(table_error(with_replaced(two_tools, "stickout = 20.0", "stickout = \"20\"")) ==
         "tools.toml:5: slim.stickout: expected a number, got a string");
-  CHECK(error_of("name = 3\n") == "tools.toml:1: name: expected a table, got an integer");
-  CHECK(error_of("# nothing\n") == "tools.toml: no tools: expected one [NAME] table per tool");
-  CHECK(error_of("[a\n").starts_with("tools.toml:1: TOML syntax: "));
+  CHECK(table_error("name = 3\n") == "tools.toml:1: name: expected a table, got an integer");
+  CHECK(table_error("# nothing\n") == "tools.toml: no tools: expected one [NAME] table per tool");
+  CHECK(table_error("[a\n").starts_with("tools.toml:1: TOML syntax: "));
 }
 
 TEST_CASE("the shipped tool table loads, and is told from the machine configs by its content") {

@@ -46,8 +46,8 @@ public:
   [[nodiscard]] const PathClearance& result() const { return out_; }
 
 private:
-  ClearanceMeter(std::unique_ptr<const SurfaceMesh> mesh, const ToolAssembly& tool,
-                 Fixture fixture, bool floor_at_lowest);
+  ClearanceMeter(std::unique_ptr<const SurfaceMesh> mesh, const ToolAssembly& tool, Fixture fixture,
+                 bool floor_at_lowest);
 
   // On the heap, so that a moved meter's tree and clearance still point at them.
   std::unique_ptr<const SurfaceMesh> mesh_;

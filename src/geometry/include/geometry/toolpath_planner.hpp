@@ -120,10 +120,10 @@ struct PlanOptions {
 
 // How the lead and tilt were kept along the passes (axis_lean.hpp).
 struct LeanReport {
-  long points = 0;              // pass points leaned
-  long full = 0;                // of them with the whole lean
-  long reduced = 0;             // with part of it, or none, to keep the rules
-  double least_fraction = 1.0;  // the smallest part kept
+  long points = 0;             // pass points leaned
+  long full = 0;               // of them with the whole lean
+  long reduced = 0;            // with part of it, or none, to keep the rules
+  double least_fraction = 1.0; // the smallest part kept
 };
 
 // How much the tool axis turns between neighbouring poses along the passes: what the
