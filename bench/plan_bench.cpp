@@ -41,12 +41,14 @@ struct PlanRun {
 
 PlanRun plan(const geometry::Cage& cage, const geometry::LimitSurface& surface, double radius,
              double scallop, bool baseline, const std::filesystem::path& out,
-             bool choose_direction = false, const geometry::ToolAssembly* tool = nullptr) {
+             bool choose_direction = false, const geometry::ToolAssembly* tool = nullptr,
+             geometry::AxisLean lean = {}) {
   geometry::PlanOptions options;
   options.ball_radius = radius;
   options.scallop = scallop;
   options.baseline = baseline;
   options.choose_direction = choose_direction;
+  options.lean = lean;
   if (tool != nullptr) {
     options.whole_tool = true;
     options.tool = *tool;
@@ -199,7 +201,7 @@ template <class Work> double child_peak_mib(Work&& work) {
 
 // The whole tool (a 6 mm ball on a 6 mm shank, 40 mm out of a 32 mm holder, the floor at
 // the part's lowest point): plan time and peak memory against the same plan of the ball
-// alone.
+// alone; and with a lead, against the same without.
 void bench_whole_tool(const std::filesystem::path& dir) {
   struct Part {
     std::string name;
@@ -211,22 +213,29 @@ void bench_whole_tool(const std::filesystem::path& dir) {
   parts.push_back(
       {"dome", geometry::read_obj(std::string(SUBFEED_SOURCE_DIR) + "/examples/dome.obj").value(),
        0.01});
-  const geometry::ToolAssembly tool{
-      .ball_radius = 3, .flute_length = 18, .shank_diameter = 6, .stickout = 40,
-      .holder = {{32, 32, 40}}};
+  const geometry::ToolAssembly tool{.ball_radius = 3,
+                                    .flute_length = 18,
+                                    .shank_diameter = 6,
+                                    .stickout = 40,
+                                    .holder = {{32, 32, 40}}};
   for (const auto& part : parts) {
     const auto surface = geometry::LimitSurface::build(part.cage).value();
     const auto file = dir / "tool.cl";
     const auto ball = plan(part.cage, surface, 3.0, part.scallop, false, file);
     const auto whole = plan(part.cage, surface, 3.0, part.scallop, false, file, false, &tool);
-    bench::report({fmt::format("whole tool, {} H {}", part.name, part.scallop), whole.seconds,
-                   "s", "the ball alone", ball.seconds, false});
-    const double ball_peak = child_peak_mib(
-        [&] { (void)plan(part.cage, surface, 3.0, part.scallop, false, file); });
+    bench::report({fmt::format("whole tool, {} H {}", part.name, part.scallop), whole.seconds, "s",
+                   "the ball alone", ball.seconds, false});
+    const double ball_peak =
+        child_peak_mib([&] { (void)plan(part.cage, surface, 3.0, part.scallop, false, file); });
     const double whole_peak = child_peak_mib(
         [&] { (void)plan(part.cage, surface, 3.0, part.scallop, false, file, false, &tool); });
     bench::report({fmt::format("whole tool peak, {}", part.name), whole_peak, "MiB",
                    "the ball alone", ball_peak, false});
+    // A 15 degree lead, eased where the holder would hit: each point checked again.
+    const auto led = plan(part.cage, surface, 3.0, part.scallop, false, file, false, &tool,
+                          geometry::AxisLean{15.0, 0.0});
+    bench::report({fmt::format("whole tool, lead 15, {} H {}", part.name, part.scallop),
+                   led.seconds, "s", "the whole tool without a lead", whole.seconds, false});
   }
 }
 

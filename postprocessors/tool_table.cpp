@@ -76,6 +76,11 @@ Expected<ToolTable> parse_tool_table(std::string_view text, const std::string& s
   TomlTableReader top(root, "", source, 1);
   for (const auto& [key, node] : root) {
     const std::string name(key.str());
+    if (name.find(':') != std::string::npos) {
+      return fail(ErrorCode::bad_input,
+                  "a tool's name may not hold ':' (--tool would read it as a cutter, ball:D)",
+                  {source, static_cast<int>(key.source().begin.line), name});
+    }
     SUBFEED_TRY_ASSIGN(auto table, top.table(name));
     SUBFEED_TRY_ASSIGN(
         auto tool, read_tool(std::move(table), name, static_cast<int>(key.source().begin.line)));

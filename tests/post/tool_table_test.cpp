@@ -81,6 +81,9 @@ TEST_CASE("tool table: each mistake is one error naming the line and the dotted 
   CHECK(table_error(with_replaced(two_tools, "stickout = 20.0", "stickout = \"20\"")) ==
         "tools.toml:5: slim.stickout: expected a number, got a string");
   CHECK(table_error("name = 3\n") == "tools.toml:1: name: expected a table, got an integer");
+  CHECK(table_error("[\"ball:6\"]\ncutter = \"ball\"\ndiameter = 6\n") ==
+        "tools.toml:1: ball:6: a tool's name may not hold ':' (--tool would read it as a cutter, "
+        "ball:D)");
   CHECK(table_error("# nothing\n") == "tools.toml: no tools: expected one [NAME] table per tool");
   CHECK(table_error("[a\n").starts_with("tools.toml:1: TOML syntax: "));
 }
