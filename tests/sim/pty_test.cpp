@@ -1,6 +1,7 @@
 #include "sim/pty.hpp"
 
 #include <catch2/catch.hpp>
+#include <cerrno>
 #include <fcntl.h>
 #include <filesystem>
 #include <unistd.h>
@@ -41,13 +42,22 @@ TEST_CASE("a pty read times out with zero bytes", "[pty]") {
 }
 
 TEST_CASE("a pty closes its master when it dies", "[pty]") {
-  std::string path;
+  // The far side, held open across the death: it sees the hang-up. (Reopening the slave's
+  // path is no test: another test running beside this one may be given the same pty number.)
+  int slave = -1;
   {
     auto pty = subfeed::sim::Pty::open().value();
-    path = pty.slave_path();
+    slave = ::open(pty.slave_path().c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    REQUIRE(slave >= 0);
+    char byte = 0;
+    CHECK(::read(slave, &byte, 1) < 0); // nothing yet: the master is open, so EAGAIN
+    CHECK(errno == EAGAIN);
     auto moved = std::move(pty); // ownership moves, no double close
     CHECK(moved.master_fd() >= 0);
     CHECK(pty.master_fd() == -1);
   }
-  CHECK(::open(path.c_str(), O_RDWR | O_NOCTTY) < 0);
+  char byte = 0;
+  const auto got = ::read(slave, &byte, 1);
+  CHECK((got == 0 || (got < 0 && errno == EIO))); // hung up, not "nothing yet"
+  ::close(slave);
 }
