@@ -11,7 +11,8 @@
 // the tip stays within its tolerance of the straight move), and at least every half degree
 // a rotary axis turns and 8 times a block for a rapid. Under tool-centre-point control the
 // tip is X Y Z, moving straight, and the axis from the angles or I J K. Poses are checked
-// from the first block that sets X, Y and Z. Cuts may go the post's tolerance deeper than
+// from the first block that sets X, Y and Z; a rotary axis no block has set yet counts as
+// at 0, as `check` replays it (the post sets every axis before the first cut). Cuts may go the post's tolerance deeper than
 // the CL gate allows: the gate given should allow for it (MotionGate::sibling).
 
 #include "base/error.hpp"
