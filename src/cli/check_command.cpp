@@ -40,25 +40,26 @@ std::string at(const post::Finding& f) {
 }
 
 // The tool and fixture to check the program with: the CL data's records, else the flags.
-Expected<job::RecordedTool> tool_to_check(CheckCommandOptions o, const cl::ClHeader* header,
-                                          bool& floor_at_lowest, Logger& log) {
+Expected<job::RecordedTool> tool_to_check(job::PlanSettings flags, const cl::ClHeader* header,
+                                          const std::string& cl_file, bool& floor_at_lowest,
+                                          Logger& log) {
   floor_at_lowest = false;
-  if (header != nullptr && o.tool.tool.empty()) {
-    SUBFEED_TRY_ASSIGN(const auto recorded, job::recorded_tool(*header, o.cl));
+  if (header != nullptr && flags.tool.empty()) {
+    SUBFEED_TRY_ASSIGN(const auto recorded, job::recorded_tool(*header, cl_file));
     if (recorded) {
       return *recorded;
     }
   }
-  if (o.tool.tool.empty()) {
+  if (flags.tool.empty()) {
     return fail(ErrorCode::usage,
                 "the whole tool is needed: give --tool (with --shank, --stickout, --holder), or "
                 "--cl with CL data that records it (PPRINT TOOL and FIXTURE)",
                 {{}, 0, "--cage"});
   }
-  SUBFEED_TRY(resolve_tool(o.tool, log));
+  SUBFEED_TRY(resolve_tool(flags, log));
   job::RecordedTool out;
-  SUBFEED_TRY_ASSIGN(out.tool, job::tool_assembly_from(o.tool));
-  SUBFEED_TRY_ASSIGN(const auto fixture, job::fixture_from(o.tool));
+  SUBFEED_TRY_ASSIGN(out.tool, job::tool_assembly_from(flags));
+  SUBFEED_TRY_ASSIGN(const auto fixture, job::fixture_from(flags));
   out.fixture = fixture.fixture;
   floor_at_lowest = fixture.floor_at_lowest;
   return out;
@@ -71,7 +72,7 @@ clearance_meter_for(const CheckCommandOptions& o, const cl::ClHeader* header, Lo
     return std::optional<geometry::ClearanceMeter>();
   }
   bool floor_at_lowest = false;
-  SUBFEED_TRY_ASSIGN(const auto tool, tool_to_check(o, header, floor_at_lowest, log));
+  SUBFEED_TRY_ASSIGN(const auto tool, tool_to_check(o.tool, header, o.cl, floor_at_lowest, log));
   SUBFEED_TRY_ASSIGN(const auto cage,
                      header != nullptr ? job::read_part_agreed(o.cage, o.setup, header->setup, o.cl)
                                        : geometry::read_part(o.cage, o.setup.with_defaults()));

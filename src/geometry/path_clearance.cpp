@@ -4,9 +4,6 @@
 #include "geometry/assembly_sweep.hpp"
 #include "geometry/pose_vectors.hpp"
 
-#include <algorithm>
-#include <limits>
-
 namespace subfeed::geometry {
 
 namespace {
@@ -23,11 +20,7 @@ ClearanceMeter::ClearanceMeter(std::unique_ptr<const SurfaceMesh> mesh, const To
       tree_(std::make_unique<const TriangleTree>(mesh_->points, mesh_->triangles)), tool_(tool),
       fixture_(std::move(fixture)) {
   if (floor_at_lowest) {
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const auto& p : mesh_->points) {
-      lowest = std::min(lowest, p.z());
-    }
-    fixture_.floor_z = lowest;
+    fixture_.floor_z = lowest_z(*mesh_);
   }
   clearance_ = std::make_unique<const AssemblyClearance>(tool_, fixture_, *tree_);
   out_.bodies = clearance_->blank();

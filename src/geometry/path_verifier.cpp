@@ -229,19 +229,21 @@ struct Measured {
   double height = 0.0;   // the scallop shown: refined near the worst
 };
 
-// The grids the samples are measured against, built once.
-// The samples no ball reached, with their shares of the area.
+// The samples no ball reached, with their shares of the area; and, for a picture, those
+// left out of the scallop for reach (beyond the tilt, under the floor).
 struct Uncut {
-  std::vector<Eigen::Vector3d> points; // no ball came
+  std::vector<Eigen::Vector3d> points;
   std::vector<double> areas;
-  std::vector<LeftSample> left; // every sample not measured for scallop, for the picture
+  std::vector<LeftSample> out_of_reach;
 };
 
+// The grids the samples are measured against, built once.
 struct Sweeps {
   CapsuleGrid cuts, links, rapids;
   double reach_z; // a normal with less z than this is out of reach
   double r;
   double ball_floor_z; // mm: a ball touching a sample may not reach under this
+  bool pictured;       // a picture is drawn: keep the samples out of reach for it
 };
 
 // Each sample stands for a third of the area of the triangles around it (taken on the
@@ -285,21 +287,24 @@ void measure_sample(const Sweeps& sweeps, Measurer& m, std::vector<Capsule>& nea
   if (s.normal.z() < sweeps.reach_z) {
     ++report.out_of_reach_samples;
     report.out_of_reach_area += share;
-    uncut.left.push_back({s.point, LeftUncut::beyond_tilt});
+    if (sweeps.pictured) {
+      uncut.out_of_reach.push_back({s.point, LeftUncut::beyond_tilt});
+    }
     return;
   }
   if ((s.point + r * s.normal).z() - r <
       sweeps.ball_floor_z - AssemblyClearance::floor_tolerance_mm) {
     ++report.below_floor_samples;
     report.below_floor_area += share;
-    uncut.left.push_back({s.point, LeftUncut::below_floor});
+    if (sweeps.pictured) {
+      uncut.out_of_reach.push_back({s.point, LeftUncut::below_floor});
+    }
     return;
   }
   if (!std::isfinite(h.height)) {
     ++report.uncut_samples;
     uncut.points.push_back(s.point);
     uncut.areas.push_back(share);
-    uncut.left.push_back({s.point, LeftUncut::no_ball});
     return;
   }
   Sample sample = where;
@@ -365,7 +370,7 @@ void add_face(FaceMeasured& face, VerifyReport& report, std::vector<Measured>& k
   std::ranges::move(face.kept, std::back_inserter(kept));
   std::ranges::move(face.uncut.points, std::back_inserter(uncut.points));
   std::ranges::move(face.uncut.areas, std::back_inserter(uncut.areas));
-  std::ranges::move(face.uncut.left, std::back_inserter(uncut.left));
+  std::ranges::move(face.uncut.out_of_reach, std::back_inserter(uncut.out_of_reach));
 }
 
 // Every face's samples, `spacing` apart, measured, the faces shared between the cores.
@@ -393,7 +398,12 @@ std::vector<Measured> measure_surface(const LimitSurface& surface, const Sweeps&
   // Neighbouring samples lie about `spacing` apart (a face's rate follows its size at its
   // centre, so a little more where it stretches): three spacings join a region, not two.
   report.uncut = uncut_regions(uncut.points, uncut.areas, 3.0 * spacing);
-  left = std::move(uncut.left);
+  if (sweeps.pictured) {
+    left = std::move(uncut.out_of_reach);
+    for (const auto& p : uncut.points) {
+      left.push_back({p, LeftUncut::no_ball});
+    }
+  }
   return kept;
 }
 
@@ -494,7 +504,8 @@ Expected<VerifyReport> verify_path(const LimitSurface& surface, const std::files
                       CapsuleGrid(path.rapids, r, r),
                       reach_z,
                       r,
-                      options.ball_floor_z.value_or(-std::numeric_limits<double>::infinity())};
+                      options.ball_floor_z.value_or(-std::numeric_limits<double>::infinity()),
+                      options.svg.has_value() || options.png.has_value()};
   const double spacing = options.sample_spacing > 0.0 ? options.sample_spacing : r / 30.0;
   Measurer m{surface, sweeps.cuts, r, {}};
   std::vector<LeftSample> left;

@@ -97,10 +97,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
   Fixture fixture = options.fixture;
   if (options.floor_at_lowest) {
-    // The mesh's vertices lie on the limit surface: its lowest one is the part's lowest
-    // point within the chord, which the floor tolerance covers.
-    fixture.floor_z =
-        std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
+    fixture.floor_z = lowest_z(mesh); // within the chord, which the floor tolerance covers
   }
   const GateOptions gate_options{options.ball_radius, gate_tolerance, options.whole_tool,
                                  options.tool, fixture};

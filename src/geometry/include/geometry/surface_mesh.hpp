@@ -44,6 +44,10 @@ struct SurfaceMesh {
 // W for one limit sample (see SurfaceMesh::curvature).
 [[nodiscard]] Eigen::Matrix3d curvature_matrix(const LimitSample& sample);
 
+// The lowest vertex's z, mm: the vertices lie on the limit surface, so this is the part's
+// lowest point within the mesh's chord (the default floor).
+[[nodiscard]] double lowest_z(const SurfaceMesh& mesh);
+
 // Per cage face, the tessellation rate that keeps every chord within `chord_tolerance` (mm)
 // of the surface, estimated from second derivatives sampled over the face, and, with
 // `max_edge_mm`, every cell edge about that short or shorter (flat faces too, so that
