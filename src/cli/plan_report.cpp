@@ -270,15 +270,14 @@ std::string gate_summary(const geometry::GateReport& gate) {
       bodies += std::isfinite(b.to_floor) ? fmt::format("{:.3f} mm above the floor", b.to_floor)
                                           : std::string("no floor");
     }
-    return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its mesh "
-                       "within {:g} um): no cut deeper than {:g} um, no rapid touching it; least "
+    return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its limit "
+                       "surface itself): no cut deeper than {:g} um, no rapid touching it; least "
                        "clearance: {}",
-                       gate.moves, gate.rapids, gate.chord * 1000.0, gate.tolerance * 1000.0,
-                       bodies);
+                       gate.moves, gate.rapids, gate.tolerance * 1000.0, bodies);
   }
-  return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its mesh "
-                     "within {:g} um): no cut deeper than {:g} um, no rapid touching it",
-                     gate.moves, gate.rapids, gate.chord * 1000.0, gate.tolerance * 1000.0);
+  return fmt::format("  motion gate: {} moves ({} rapids) checked against the part (its limit "
+                     "surface itself): no cut deeper than {:g} um, no rapid touching it",
+                     gate.moves, gate.rapids, gate.tolerance * 1000.0);
 }
 
 } // namespace subfeed::cli

@@ -208,4 +208,36 @@ FaceTessellation LimitSurface::tessellate(int face, const std::vector<int>& edge
   return out;
 }
 
+FaceTessellation LimitSurface::tessellate_tiles(int face, int rate) const {
+  if (!has_patch(face)) {
+    return {};
+  }
+  const auto parameters = patches_->surfaces[face]->GetParameterization();
+  if (!parameters.HasSubFaces()) {
+    return tessellate(face, rate);
+  }
+  // Each tile (a corner's quarter of the face) a grid of its own, half the face's rate.
+  const int m = std::max(1, (rate + 1) / 2);
+  FaceTessellation out;
+  for (int tile = 0; tile < parameters.GetFaceSize(); ++tile) {
+    const int first = static_cast<int>(out.uv.size());
+    for (int j = 0; j <= m; ++j) {
+      for (int i = 0; i <= m; ++i) {
+        const double local[2] = {static_cast<double>(i) / m, static_cast<double>(j) / m};
+        double uv[2];
+        parameters.ConvertNormalizedSubFaceToCoord(tile, local, uv);
+        out.uv.emplace_back(uv[0], uv[1]);
+      }
+    }
+    const auto at = [&](int i, int j) { return first + j * (m + 1) + i; };
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < m; ++i) {
+        out.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+        out.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+    }
+  }
+  return out;
+}
+
 } // namespace subfeed::geometry

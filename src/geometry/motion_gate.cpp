@@ -41,24 +41,6 @@ std::string point_text(const Eigen::Vector3d& p) {
   return fmt::format("({:.4f}, {:.4f}, {:.4f})", p.x(), p.y(), p.z());
 }
 
-// The largest chord error the rates leave, mm, by the same second-derivative estimate the
-// rates were chosen with.
-double achieved_chord(const LimitSurface& surface, const std::vector<int>& rates, double wanted) {
-  double chord = wanted;
-  if (std::ranges::max(rates) < most_segments) {
-    return chord;
-  }
-  // The rate a 64 times finer chord would take, up to 8 times the cap: chord ~ 1 / rate^2.
-  const auto finer = rates_for_tolerance(surface, wanted / 64.0, 8 * most_segments);
-  for (std::size_t f = 0; f < rates.size(); ++f) {
-    if (rates[f] >= most_segments) {
-      const double ratio = static_cast<double>(finer[f]) / most_segments;
-      chord = std::max(chord, wanted / 64.0 * ratio * ratio);
-    }
-  }
-  return chord;
-}
-
 } // namespace
 
 MotionGate::MotionGate(GateOptions options, std::shared_ptr<const Part> part, double chord)
@@ -84,25 +66,24 @@ Expected<MotionGate> MotionGate::build(const Cage& cage, const LimitSurface& sur
   if (!(options.ball_radius > 0.0) || !(options.tolerance > 0.0)) {
     return fail(ErrorCode::bad_input, "the gate needs a ball radius and tolerance above 0");
   }
-  const double wanted = options.tolerance / 4.0;
-  const auto rates = rates_for_tolerance(surface, wanted, most_segments);
-  SUBFEED_TRY_ASSIGN(auto mesh, mesh_surface(cage, surface, rates, share));
+  SUBFEED_TRY_ASSIGN(auto exact,
+                     LimitDistance::build(cage, {.approx_level = surface.approx_level()}));
   auto part = std::make_shared<Part>();
-  part->mesh = std::make_unique<SurfaceMesh>(std::move(mesh));
-  part->tree = std::make_unique<TriangleTree>(part->mesh->points, part->mesh->triangles);
+  part->surface = std::make_unique<LimitDistance>(std::move(exact));
   if (options.whole_tool) {
-    SUBFEED_TRY_ASSIGN(
-        auto coarse,
-        mesh_surface(cage, surface, rates_for_tolerance(surface, tool_chord_mm, most_segments)));
+    SUBFEED_TRY_ASSIGN(auto coarse,
+                       mesh_surface(cage, surface,
+                                    rates_for_tolerance(surface, tool_chord_mm, most_segments),
+                                    share));
     part->tool_mesh = std::make_unique<SurfaceMesh>(std::move(coarse));
     part->tool_tree =
         std::make_unique<TriangleTree>(part->tool_mesh->points, part->tool_mesh->triangles);
   }
-  return MotionGate(options, std::move(part), achieved_chord(surface, rates, wanted));
+  return MotionGate(options, std::move(part), LimitDistance::precision_mm);
 }
 
-std::optional<MeshNearest> MotionGate::nearest(const cl::ClPose& from, const cl::ClPose& to,
-                                               double limit) const {
+std::optional<LimitNearest> MotionGate::nearest(const cl::ClPose& from, const cl::ClPose& to,
+                                                double limit) const {
   const double r = options_.ball_radius;
   const Eigen::Vector3d t0 = tip_of(from), t1 = tip_of(to);
   const Eigen::Vector3d a0 = axis_of(from), a1 = axis_of(to);
@@ -114,11 +95,11 @@ std::optional<MeshNearest> MotionGate::nearest(const cl::ClPose& from, const cl:
     return Eigen::Vector3d((1.0 - t) * t0 + t * t1 +
                            r * (axis.norm() > 0.0 ? axis.normalized() : a1));
   };
-  std::optional<MeshNearest> best;
+  std::optional<LimitNearest> best;
   Eigen::Vector3d previous = centre(0.0);
   for (int i = 1; i <= pieces; ++i) {
     const Eigen::Vector3d next = centre(static_cast<double>(i) / pieces);
-    if (auto found = part_->tree->nearest(previous, next, best ? best->distance : limit)) {
+    if (auto found = part_->surface->nearest(previous, next, best ? best->distance : limit)) {
       best = found;
     }
     previous = next;
@@ -175,18 +156,19 @@ std::unexpected<Error> MotionGate::assembly_refusal(const cl::ClPose& pose,
               {{}, static_cast<int>(pose.line), {}});
 }
 
-std::unexpected<Error> MotionGate::refusal(const cl::ClPose& pose, const MeshNearest& found) const {
+std::unexpected<Error> MotionGate::refusal(const cl::ClPose& pose,
+                                           const LimitNearest& found) const {
   const double depth = options_.ball_radius - found.distance; // < 0: clear of the mesh by that
-  const std::string what =
-      pose.kind == cl::MoveKind::rapid
-          ? fmt::format("touches the part (the ball {:.4f} mm {})", std::abs(depth),
-                        depth >= 0.0 ? "deep" : "from it, within the gate's mesh error")
-          : fmt::format("cuts {:.4f} mm into the part (tolerance {:g} mm)", depth,
-                        options_.tolerance);
+  const std::string what = pose.kind == cl::MoveKind::rapid
+                               ? fmt::format("touches the part (the ball {:.4f} mm {})",
+                                             std::abs(depth), depth >= 0.0 ? "deep" : "from it")
+                               : fmt::format("cuts {:.4f} mm into the part (tolerance {:g} mm)",
+                                             depth, options_.tolerance);
   const std::string move = move_text(pose);
-  return fail(ErrorCode::bad_input,
-              fmt::format("tool path refused: {} {} at {}", move, what, point_text(found.on_mesh)),
-              {{}, static_cast<int>(pose.line), {}});
+  return fail(
+      ErrorCode::bad_input,
+      fmt::format("tool path refused: {} {} at {}", move, what, point_text(found.on_surface)),
+      {{}, static_cast<int>(pose.line), {}});
 }
 
 } // namespace subfeed::geometry

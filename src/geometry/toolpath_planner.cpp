@@ -1,5 +1,6 @@
 #include "geometry/toolpath_planner.hpp"
 
+#include "geometry/ball_lift.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/coarse_deformation.hpp"
 #include "geometry/concentric_field.hpp"
@@ -9,6 +10,7 @@
 #include "geometry/pose_vectors.hpp"
 #include "geometry/split_work.hpp"
 #include "geometry/step_over.hpp"
+#include "geometry/vector_sum_tree.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -107,9 +109,15 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     return finer ? MotionGate::build(finer->cage, finer->surface, gate_options, &share)
                  : MotionGate::build(cage, surface, gate_options, &share);
   }());
+  SUBFEED_TRY_ASSIGN(auto exact, [&] {
+    const auto clock = enter(PlanStage::gate_mesh);
+    return LimitDistance::build(finer ? finer->cage : cage,
+                                {.approx_level = surface.approx_level()});
+  }());
   auto planned = options;
   planned.fixture = fixture;
   ToolpathPlanner planner(planned, std::move(mesh), std::move(gate));
+  planner.exact_ = std::make_unique<LimitDistance>(std::move(exact));
   planner.summary_.fixture = fixture;
   planner.summary_.cage_levels = finer ? finer->levels : 0;
   planner.summary_.cage_faces = finer ? finer->cage.face_count() : cage.face_count();
@@ -291,7 +299,7 @@ void ToolpathPlanner::set_link_limits(double widest_spacing) {
   stay_down_ = options_.stay_down.value_or(2.0 * r);
 }
 
-// Centroids and reaches (for the clearance check), area normals (for the tool axis) and the
+// Centroids and area normals (for the tool axis) and the
 // longest edge (how far a vertex search must reach).
 void ToolpathPlanner::index_triangles() {
   for (const auto& t : mesh_.triangles) {
@@ -299,9 +307,6 @@ void ToolpathPlanner::index_triangles() {
     const auto& p1 = mesh_.points[static_cast<std::size_t>(t[1])];
     const auto& p2 = mesh_.points[static_cast<std::size_t>(t[2])];
     centroids_.push_back((p0 + p1 + p2) / 3.0);
-    const auto& c = centroids_.back();
-    reach_.push_back(std::sqrt(
-        std::max({(p0 - c).squaredNorm(), (p1 - c).squaredNorm(), (p2 - c).squaredNorm()})));
     area_normals_.push_back(0.5 * (p1 - p0).cross(p2 - p0));
     longest_edge_ = std::max({longest_edge_, (p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
   }
@@ -314,7 +319,7 @@ void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
   auto& axes = vertex_axes_;
   axes.assign(mesh_.points.size(), Eigen::Vector3d::UnitZ());
   if (!options_.fixed_axis) {
-    const PointGrid triangles(centroids_, options_.axis_radius.value_or(options_.ball_radius));
+    const VectorSumTree triangles(centroids_, area_normals_);
     split_work(axes.size(), [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         share.tell(begin, v, end);
@@ -351,11 +356,9 @@ void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
 
 Eigen::Vector3d ToolpathPlanner::vertex_axis(const Eigen::Vector3d& contact,
                                              const Eigen::Vector3d& normal,
-                                             const PointGrid& triangles) const {
+                                             const VectorSumTree& triangles) const {
   const double zeta = options_.axis_radius.value_or(options_.ball_radius);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  triangles.within(contact, zeta,
-                   [&](int t) { sum += area_normals_[static_cast<std::size_t>(t)]; });
+  const Eigen::Vector3d sum = triangles.sum_within(contact, zeta);
   return within_tilt(sum.norm() > 0.0 ? Eigen::Vector3d(sum.normalized()) : normal,
                      options_.max_tilt_deg);
 }
@@ -464,7 +467,7 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
   const auto cleared = [&](double t) {
     const Eigen::Vector3d axis = ((1.0 - t) * ae + t * as).normalized();
     Eigen::Vector3d centre = (1.0 - t) * e + t * s + options_.ball_radius * axis;
-    const double lift = clearance_lift(design, centre, axis);
+    const double lift = exact_->lift(centre, axis, options_.ball_radius);
     if (lift > 1e-9) {
       centre += (lift + chord_tolerance_) * axis;
       rise = std::max(rise, lift);
@@ -642,47 +645,35 @@ TriangleTree ToolpathPlanner::design_tree() const {
   return {mesh_.points, mesh_.triangles};
 }
 
-template <class Visit>
-void ToolpathPlanner::for_near_triangles(const TriangleTree& design, const Eigen::Vector3d& at,
-                                         Visit&& visit) const {
-  // The tree yields each triangle whose box reaches the ball once. Every point of a triangle
-  // lies within its reach of its centroid, so one whose centroid is farther than the ball's
-  // radius plus that reach cannot touch the ball and is not measured.
-  const double r = options_.ball_radius;
-  for (const int i : design.near(at, r)) {
-    const auto u = static_cast<std::size_t>(i);
-    const double near = r + reach_[u];
-    if ((at - centroids_[u]).squaredNorm() > near * near) {
-      continue;
-    }
-    const auto& t = mesh_.triangles[u];
-    visit(at - closest_on_triangle(at, mesh_.points[static_cast<std::size_t>(t[0])],
-                                   mesh_.points[static_cast<std::size_t>(t[1])],
-                                   mesh_.points[static_cast<std::size_t>(t[2])]));
-  }
+double ToolpathPlanner::mesh_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
+                                  const Eigen::Vector3d& dir) const {
+  return lift_ball(
+      [&design](const Eigen::Vector3d& at, double limit) -> std::optional<Eigen::Vector3d> {
+        if (const auto found = design.nearest(at, at, limit)) {
+          return found->on_mesh;
+        }
+        return std::nullopt;
+      },
+      centre, dir, options_.ball_radius, 1e-9);
 }
 
-double ToolpathPlanner::clearance_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
-                                       const Eigen::Vector3d& dir) const {
+double ToolpathPlanner::place_on_surface(PassPoint& p) const {
   const double r = options_.ball_radius;
-  double total = 0.0;
-  // Moving the ball moves the nearest point of a triangle, and a lifted ball can meet
-  // triangles the first one did not (the far wall of a groove): a few rounds settle both.
-  for (int round = 0; round < 8; ++round) {
-    double lift = 0.0;
-    for_near_triangles(design, centre + total * dir, [&](const Eigen::Vector3d& m) {
-      const double c = m.squaredNorm() - r * r;
-      if (c < 0.0) {
-        const double b = m.dot(dir);
-        lift = std::max(lift, -b + std::sqrt(b * b - c));
-      }
-    });
-    total += lift;
-    if (lift <= 1e-9) {
-      break;
+  const double lift = exact_->lift(p.centre, p.normal, r);
+  if (lift > 0.0) {
+    p.centre += lift * p.normal;
+    return lift;
+  }
+  // Off the surface by no more than the CL mesh's chord could leave it: lowered along the
+  // surface's own normal there, onto the CL surface.
+  const double band = 8.0 * chord_tolerance_ + 1e-6;
+  if (const auto near = exact_->nearest(p.centre, r + band)) {
+    const Eigen::Vector3d out = p.centre - near->on_surface;
+    if (out.norm() > 0.0) {
+      p.centre = near->on_surface + r * out.normalized();
     }
   }
-  return total;
+  return 0.0;
 }
 
 void ToolpathPlanner::set_clear_balls(const TriangleTree& design, StageShare& share) {
@@ -693,7 +684,7 @@ void ToolpathPlanner::set_clear_balls(const TriangleTree& design, StageShare& sh
       share.tell(begin, v, end);
       const Eigen::Vector3d& n = mesh_.normals[v];
       clear_balls_[v] = mesh_.points[v] + r * n;
-      clear_balls_[v] += clearance_lift(design, clear_balls_[v], n) * n;
+      clear_balls_[v] += mesh_lift(design, clear_balls_[v], n) * n;
     }
   });
 }
@@ -729,17 +720,11 @@ std::vector<double> ToolpathPlanner::material_left(const std::vector<char>& reac
   return material;
 }
 
-void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design) {
-  // Over a hollow the lift goes one mesh tolerance further, as the true surface may lie
-  // that much nearer the ball than its triangles. Elsewhere a lift is only the rounding of
-  // a point interpolated on a mesh edge.
+void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass) {
+  // A lift beyond this is a hollow the ball rides over, not the rounding of a point
+  // interpolated on a CL mesh edge.
   const double hollow = 2.0 * chord_tolerance_;
-  const auto lift_clear = [&](PassPoint& p) {
-    double lift = clearance_lift(design, p.centre, p.normal);
-    lift += lift > hollow ? chord_tolerance_ : 0.0;
-    p.centre += lift * p.normal;
-    return lift;
-  };
+  const auto lift_clear = [&](PassPoint& p) { return place_on_surface(p); };
   for (auto& p : pass) {
     if (const double lift = lift_clear(p); lift > hollow) {
       lifted_.push_back({p.contact, lift});
@@ -773,8 +758,7 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass, const TriangleTre
 }
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangles,
-                                 const TriangleTree& design) {
+ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangles) {
   // Edges of one triangle only, in that triangle's winding, chained end to start: where the
   // surface ends and where the tool's reach does.
   const auto edges = mesh_edges(triangles);
@@ -805,15 +789,14 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
       run.push_back({cl_points_[u], mesh_.points[u], mesh_.normals[u], vertex_axes_[u]});
     }
     if (run.size() >= 2) {
-      clear_pass(run, design);
+      clear_pass(run);
       passes.push_back(std::move(run));
     }
   }
   return passes;
 }
 
-std::vector<std::vector<ToolpathPlanner::PassPoint>>
-ToolpathPlanner::floor_limit_passes(const TriangleTree& design) {
+std::vector<std::vector<ToolpathPlanner::PassPoint>> ToolpathPlanner::floor_limit_passes() {
   std::vector<std::vector<PassPoint>> passes;
   if (!options_.fixture.floor_z ||
       std::ranges::find(tool_reach_, ReachLimit::floor) == tool_reach_.end()) {
@@ -853,7 +836,7 @@ ToolpathPlanner::floor_limit_passes(const TriangleTree& design) {
                       vertex_axes_[kept]});
     }
     if (pass.size() >= 2) {
-      clear_pass(pass, design);
+      clear_pass(pass);
       passes.push_back(std::move(pass));
     }
   }
@@ -897,7 +880,7 @@ ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& d
 
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted,
-                           double level, int depth, const TriangleTree& design) {
+                           double level, int depth) {
   auto lines = slicer.slice(level, inserted.empty() ? nullptr : &inserted, depth);
   std::vector<std::vector<PassPoint>> passes;
   for (const auto& line : lines) {
@@ -917,7 +900,7 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>&
       pass.push_back(p);
     }
     if (pass.size() >= 2) {
-      clear_pass(pass, design);
+      clear_pass(pass);
       passes.push_back(std::move(pass));
     }
   }
@@ -951,7 +934,7 @@ void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out,
     CutLevel level;
     level.plane = depth == 0 ? index / per_plane : -1;
     const double at = first + static_cast<double>(index) * step / static_cast<double>(per_plane);
-    auto passes = cut_level(slicer, inserted_depth, at, depth, design);
+    auto passes = cut_level(slicer, inserted_depth, at, depth);
     // Every other level the other way round for zig-zag.
     if (!passes.empty() && options_.zigzag && cut_count % 2 == 1) {
       std::ranges::reverse(passes);
@@ -1005,7 +988,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   SUBFEED_TRY(emit_nearest_first(std::move(inserted), sink, design));
   // Last, one pass along every boundary of the surface: iso-planar passes meet a boundary
   // at an angle and leave a strip beside it that no neighbour pass covers.
-  for (auto& whole : boundary_passes(cut, design)) {
+  for (auto& whole : boundary_passes(cut)) {
     smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {
       SUBFEED_TRY(emit_pass(pass, sink, design));
@@ -1013,7 +996,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   }
   // And one along the exact edge of the band round the foot the ball reaches only below the
   // floor: the cut triangles end up to a mesh cell short of it.
-  for (auto& whole : floor_limit_passes(design)) {
+  for (auto& whole : floor_limit_passes()) {
     smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {
       SUBFEED_TRY(emit_pass(pass, sink, design));

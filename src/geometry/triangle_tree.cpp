@@ -89,7 +89,12 @@ void TriangleTree::fit_cylinder(Node& leaf) const {
 
 TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& points,
                            const std::vector<std::array<int, 3>>& triangles)
-    : points_(&points), triangles_(&triangles), order_(triangles.size()) {
+    : TriangleTree(points, triangles, {}) {}
+
+TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<std::array<int, 3>>& triangles,
+                           std::vector<double> grown)
+    : points_(&points), triangles_(&triangles), order_(triangles.size()), grown_(std::move(grown)) {
   std::iota(order_.begin(), order_.end(), 0);
   centroids_.reserve(triangles.size());
   for (const auto& t : triangles) {
@@ -109,8 +114,10 @@ int TriangleTree::build(int first, int count) {
   nodes_.emplace_back();
   Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
   Eigen::Vector3d clow = low, chigh = high;
+  double grown = 0.0;
   for (int i = first; i < first + count; ++i) {
     const auto t = static_cast<std::size_t>(order_[static_cast<std::size_t>(i)]);
+    grown = grown_.empty() ? 0.0 : std::max(grown, grown_[t]);
     for (const int v : (*triangles_)[t]) {
       low = low.cwiseMin((*points_)[static_cast<std::size_t>(v)]);
       high = high.cwiseMax((*points_)[static_cast<std::size_t>(v)]);
@@ -118,11 +125,13 @@ int TriangleTree::build(int first, int count) {
     clow = clow.cwiseMin(centroids_[t]);
     chigh = chigh.cwiseMax(centroids_[t]);
   }
-  nodes_[static_cast<std::size_t>(index)].low = low;
-  nodes_[static_cast<std::size_t>(index)].high = high;
+  nodes_[static_cast<std::size_t>(index)].low = low - Eigen::Vector3d::Constant(grown);
+  nodes_[static_cast<std::size_t>(index)].high = high + Eigen::Vector3d::Constant(grown);
   nodes_[static_cast<std::size_t>(index)].first = first;
   nodes_[static_cast<std::size_t>(index)].count = count;
   fit_cylinder(nodes_[static_cast<std::size_t>(index)]);
+  nodes_[static_cast<std::size_t>(index)].radius += grown;
+  nodes_[static_cast<std::size_t>(index)].half_height += grown;
   if (count <= leaf_size) {
     nodes_[static_cast<std::size_t>(index)].first = first;
     nodes_[static_cast<std::size_t>(index)].count = count;
@@ -183,6 +192,57 @@ std::optional<MeshNearest> TriangleTree::nearest(const Eigen::Vector3d& p, const
     stack.push_back(left_nearer ? node.left : node.right);
   }
   return best;
+}
+
+void TriangleTree::segment_search(
+    const Eigen::Vector3d& p, const Eigen::Vector3d& q, double& bound,
+    const std::function<void(int, const SegmentTriangleNearest&)>& leaf) const {
+  if (nodes_.empty()) {
+    return;
+  }
+  const bool point = p == q;
+  // A point's bounds are cheaper than a segment's; both are compared squared.
+  const auto beyond = [&](const Node& node) {
+    const double b2 = bound * bound;
+    if (point) {
+      return box_point_bound2(p, node.low, node.high) >= b2 ||
+             cylinder_point_bound2(p, node.centre, node.normal, node.radius, node.half_height) >=
+                 b2;
+    }
+    return box_lower_bound(p, q, node.low, node.high) >= bound ||
+           cylinder_lower_bound(p, q, node.centre, node.normal, node.radius, node.half_height) >=
+               bound;
+  };
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const auto& node = nodes_[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    if (bound <= 0.0 || beyond(node)) {
+      continue;
+    }
+    if (node.left < 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        const int t = order_[static_cast<std::size_t>(i)];
+        const auto& tri = (*triangles_)[static_cast<std::size_t>(t)];
+        const auto& a = (*points_)[static_cast<std::size_t>(tri[0])];
+        const auto& b = (*points_)[static_cast<std::size_t>(tri[1])];
+        const auto& c = (*points_)[static_cast<std::size_t>(tri[2])];
+        const auto found = point ? SegmentTriangleNearest{p, closest_on_triangle(p, a, b, c)}
+                                 : closest_segment_triangle(p, q, a, b, c);
+        const double grown = grown_.empty() ? 0.0 : grown_[static_cast<std::size_t>(t)];
+        if (found.distance() - grown < bound) {
+          leaf(t, found);
+        }
+      }
+      continue;
+    }
+    const auto& l = nodes_[static_cast<std::size_t>(node.left)];
+    const auto& r = nodes_[static_cast<std::size_t>(node.right)];
+    const bool left_nearer =
+        box_lower_bound(p, q, l.low, l.high) < box_lower_bound(p, q, r.low, r.high);
+    stack.push_back(left_nearer ? node.right : node.left);
+    stack.push_back(left_nearer ? node.left : node.right);
+  }
 }
 
 std::vector<int> TriangleTree::near(const Eigen::Vector3d& p, double radius) const {

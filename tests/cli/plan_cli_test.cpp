@@ -342,7 +342,7 @@ TEST_CASE("plan refused by the motion gate writes no CL file, names the line and
                                    "ball:6", "--scallop", "0.05", "--refine", "2", "-o", cl});
   REQUIRE(passed.exit_code == 0);
   CHECK(has_line_matching(passed.out, R"(  motion gate: \d+ moves \(\d+ rapids\) checked against )"
-                                      R"(the part \(its mesh within 0\.25 um\): no cut deeper )"
+                                      R"(the part \(its limit surface itself\): no cut deeper )"
                                       R"(than 1 um, no rapid touching it; least clearance: ball )"
                                       R"(-?[0-9.]+ mm above the floor; flutes .*)"));
   CHECK(std::filesystem::exists(cl));

@@ -108,8 +108,8 @@ TEST_CASE("post --cage refuses a rapid through the part, naming its line, and wr
                                source_dir + "/examples/plane.obj", "-o", nc.string()});
   INFO(ok.err);
   CHECK(ok.exit_code == 0);
-  CHECK(has_line(ok.out, "  motion gate: 5 moves (2 rapids) checked against the part (its mesh "
-                         "within 0.25 um): no cut deeper than 1 um, no rapid touching it"));
+  CHECK(has_line(ok.out, "  motion gate: 5 moves (2 rapids) checked against the part (its limit "
+                         "surface itself): no cut deeper than 1 um, no rapid touching it"));
   // The posted blocks too, as the machine moves: the post's own moves included.
   CHECK(has_line_matching(ok.out, R"(  posted program: [0-9]+ poses \([0-9]+ in rapids\) as the )"
                                   R"(machine moves its joints checked against the part: no cut )"

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <random>
 
 using namespace subfeed;
@@ -135,11 +136,25 @@ TEST_CASE("the gate measures the sweep between poses, not only the poses", "[uni
   }
 }
 
-TEST_CASE("the gate's mesh is within a quarter of its tolerance", "[unit]") {
-  const auto dome = part(-0.02);
-  for (const double tolerance : {1e-3, 4e-3}) {
-    const auto gate = gate_for(dome, tolerance);
-    CHECK(gate.report().chord == Approx(tolerance / 4));
+TEST_CASE("the gate measures the depth on the limit surface itself", "[unit]") {
+  // A ball pushed along the normal into domes and bowls of several curvatures is reported
+  // as deep as it was pushed, to the message's 0.1 um: no mesh chord stands in between.
+  for (const double a : {-0.05, -0.02, 0.0, 0.02, 0.05}) {
+    const auto dome = part(a);
+    for (const double depth : {0.0123, 0.0457}) {
+      auto gate = gate_for(dome); // the first pose is measured where it stands
+      auto in = on_dome(a, 2.0, 1.0);
+      const Eigen::Vector3d n(in.axis[0], in.axis[1], in.axis[2]);
+      for (int i = 0; i < 3; ++i) {
+        in.tip[static_cast<std::size_t>(i)] -= depth * n[i];
+      }
+      const auto refused = gate.check(in);
+      REQUIRE_FALSE(refused);
+      INFO(refused.error().message);
+      CHECK(refused.error().message.find(fmt::format("cuts {:.4f} mm", depth)) !=
+            std::string::npos);
+    }
+    CHECK(gate_for(dome).report().chord <= 1e-9);
   }
 }
 

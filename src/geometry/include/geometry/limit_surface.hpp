@@ -69,6 +69,14 @@ public:
   [[nodiscard]] FaceTessellation tessellate(int face, const std::vector<int>& edge_rates,
                                             int inner) const;
 
+  // Parameter triangles about `rate` to an edge, each inside one parameter tile of the face,
+  // so that (u, v) interpolated linearly across a triangle stays on the surface: a quad's
+  // domain is one tile (as tessellate()); a face of another size (a triangle, a pentagon),
+  // which Bfr lays out as one quad tile per corner round the centre, is cut tile by tile
+  // (tessellate() joins points of neighbouring tiles into triangles across the gaps).
+  // Points are not shared between tiles.
+  [[nodiscard]] FaceTessellation tessellate_tiles(int face, int rate) const;
+
 private:
   struct Patches;
   // Bfr's evaluation as it is, the normal zero where du x dv is.

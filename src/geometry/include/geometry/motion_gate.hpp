@@ -4,20 +4,20 @@
 // planner makes through it, `post --cage` and `run PART.cl --cage` every pose they read.
 //
 // What it measures: the ball (radius r, centre tip + r axis) swept from one pose to the
-// next, the tip moving straight and the axis turning evenly, against its own triangle mesh
-// of the limit surface (vertices on the exact surface, chords within `chord` of it).
+// next, the tip moving straight and the axis turning evenly, against the limit surface
+// itself (limit_distance.hpp: its own guide mesh finds the patches near, Newton on them
+// finds the distance):
 //  - feed, plunge and retract moves may touch the part, not cut deeper than `tolerance`;
-//  - rapids may not touch it at all: the ball keeps more than `chord` from the mesh.
+//  - rapids may not touch it at all.
 // The first pose is checked where it stands.
 //
 // Sampling bound: each move is split into pieces along which the axis turns at most 0.5
 // degrees and the tip moves at most r; each piece's ball sweep is the capsule round the
-// straight line between its centres, measured exactly against every triangle. The true
-// sweep lies within r (1 - cos 0.25 deg) = 1e-5 r of that capsule, and the mesh within
-// `chord` of the surface, so a reported depth is within chord + 1e-5 r of the true one:
-// a cut deeper than tolerance + chord + 1e-5 r is always refused, one shallower than
-// tolerance - chord - 1e-5 r never is. `chord` is tolerance / 4 unless a face needs more
-// than 256 segments an edge (then it is what 256 give; GateReport says it).
+// straight line between its centres, measured against the surface. The true sweep lies
+// within r (1 - cos 0.25 deg) = 1e-5 r of that capsule, so a reported depth is within
+// 1e-5 r of the true one: a cut deeper than tolerance + 1e-5 r is always refused, one
+// shallower than tolerance - 1e-5 r never is. No mesh of the part decides it, so nothing
+// grows with how tightly the surface bends beside a crease.
 //
 // With a tool assembly (assembly_clearance.hpp) it also holds every move to the fixture's
 // rules: each body above the ball keeps clearance_min from the part, nothing goes under the
@@ -31,6 +31,7 @@
 #include "cl/cl_pose.hpp"
 #include "geometry/assembly_clearance.hpp"
 #include "geometry/cage.hpp"
+#include "geometry/limit_distance.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/stage_share.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -57,7 +58,7 @@ struct GateOptions {
 struct GateReport {
   long moves = 0;         // poses accepted, each with the move that reaches it
   long rapids = 0;        // of them rapids
-  double chord = 0.0;     // mm between the gate's mesh and the surface, at most
+  double chord = 0.0;     // mm to which its distances to the surface are exact
   double tolerance = 0.0; // mm: GateOptions::tolerance
   // With a tool assembly: each body's least clearance to the part and to the floor over
   // every move accepted (AssemblyClearance::blank() order; a distance to the part is
@@ -91,8 +92,7 @@ public:
 private:
   // The part as the gate measures it, shared by siblings; the trees point into the meshes.
   struct Part {
-    std::unique_ptr<SurfaceMesh> mesh;
-    std::unique_ptr<TriangleTree> tree;
+    std::unique_ptr<LimitDistance> surface;
     // The whole tool is measured on a coarser mesh of its own (chord 5 um).
     std::unique_ptr<SurfaceMesh> tool_mesh;
     std::unique_ptr<TriangleTree> tool_tree;
@@ -100,8 +100,8 @@ private:
   MotionGate(GateOptions options, std::shared_ptr<const Part> part, double chord);
   // The least distance from the mesh to the ball centre's sweep over the move, if under
   // `limit`; with where it is.
-  [[nodiscard]] std::optional<MeshNearest> nearest(const cl::ClPose& from, const cl::ClPose& to,
-                                                   double limit) const;
+  [[nodiscard]] std::optional<LimitNearest> nearest(const cl::ClPose& from, const cl::ClPose& to,
+                                                    double limit) const;
   // The first measured pose of the move at which the tool assembly breaks a rule.
   [[nodiscard]] std::optional<ClearanceViolation> sweep_assembly(const cl::ClPose& from,
                                                                  const cl::ClPose& to);
@@ -111,7 +111,7 @@ private:
   [[nodiscard]] std::string move_text(const cl::ClPose& pose) const;
   // The error for the move from the last pose to `pose`, which reaches `found`.
   [[nodiscard]] std::unexpected<Error> refusal(const cl::ClPose& pose,
-                                               const MeshNearest& found) const;
+                                               const LimitNearest& found) const;
 
   GateOptions options_;
   std::shared_ptr<const Part> part_;

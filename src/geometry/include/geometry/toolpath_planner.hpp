@@ -37,6 +37,7 @@
 #include "geometry/deformation.hpp"
 #include "geometry/feed_direction.hpp"
 #include "geometry/lifted_regions.hpp"
+#include "geometry/limit_distance.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/motion_gate.hpp"
@@ -56,6 +57,8 @@
 #include <optional>
 
 namespace subfeed::geometry {
+
+class VectorSumTree;
 
 // Parallel passes follow a feed direction; concentric ones are rings about the highest
 // point (concentric_field.hpp). With choose_direction, rings are set against the chosen
@@ -235,11 +238,11 @@ private:
   [[nodiscard]] std::vector<std::array<int, 3>> triangles_cut() const;
   [[nodiscard]] std::vector<unsigned char> depth_cut() const;
   [[nodiscard]] std::vector<std::vector<PassPoint>>
-  boundary_passes(const std::vector<std::array<int, 3>>& triangles, const TriangleTree& design);
+  boundary_passes(const std::vector<std::array<int, 3>>& triangles);
   // Passes along the exact edge of the band the ball reaches only below the floor (where
   // its bottom meets the floor less the stock margin), sliced across the triangles between
   // the band and what is cut; none without a floor.
-  [[nodiscard]] std::vector<std::vector<PassPoint>> floor_limit_passes(const TriangleTree& design);
+  [[nodiscard]] std::vector<std::vector<PassPoint>> floor_limit_passes();
   // The pieces of `pass` whose every point the ball can be withdrawn from (tool_reach.hpp).
   [[nodiscard]] std::vector<std::vector<PassPoint>> within_reach(std::vector<PassPoint> pass,
                                                                  const TriangleTree& design) const;
@@ -248,20 +251,21 @@ private:
   void cut_levels(BoundedQueue<CutLevel>& out, const std::vector<std::array<int, 3>>& cut,
                   const TriangleTree& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
-  cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level, int depth,
-            const TriangleTree& design);
-  // The design mesh's triangle tree, for for_near_triangles.
+  cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level,
+            int depth);
+  // The design mesh's triangle tree: what is decided per vertex is decided on it.
   [[nodiscard]] TriangleTree design_tree() const;
-  // Calls visit(centre - nearest point) once for each design triangle whose bounding sphere
-  // reaches inside a ball at `at` (`design` from design_tree()).
-  template <class Visit>
-  void for_near_triangles(const TriangleTree& design, const Eigen::Vector3d& at,
-                          Visit&& visit) const;
-  // How far the ball centre must move along `dir` until no triangle of the design mesh
-  // reaches inside the ball, mm.
-  [[nodiscard]] double clearance_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
-                                      const Eigen::Vector3d& dir) const;
-  void clear_pass(std::vector<PassPoint>& pass, const TriangleTree& design);
+  // How far the ball centre must move along `dir` until no point of the design mesh lies
+  // inside the ball, mm (a vertex's clear ball).
+  [[nodiscard]] double mesh_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
+                                 const Eigen::Vector3d& dir) const;
+  // A pass point's ball set on the limit surface itself: lifted along its normal until it
+  // clears the surface, or, where it floats off it (a chord of the CL mesh over a hollow),
+  // lowered onto it. Returns the lift, mm (0 where it was lowered or already touching).
+  double place_on_surface(PassPoint& p) const;
+  // Clears every point of the pass on the limit surface and inserts cleared midpoints where
+  // the straight sweep between two would cut in.
+  void clear_pass(std::vector<PassPoint>& pass);
   // A ball set on each design vertex along its normal and lifted clear of the part: the
   // places a ball can be, against which what a hollow keeps is measured.
   void set_clear_balls(const TriangleTree& design, StageShare& share);
@@ -274,10 +278,10 @@ private:
   // the nearest clear ball (0 where reachable), mm.
   [[nodiscard]] std::vector<double> material_left(const std::vector<char>& reachable) const;
   // The tool axis at a contact: the area-weighted normals of the triangles within zeta
-  // (`triangles`: their centroids), leaning at most max_tilt_deg.
+  // (`triangles`: their centroids and area normals), leaning at most max_tilt_deg.
   [[nodiscard]] Eigen::Vector3d vertex_axis(const Eigen::Vector3d& contact,
                                             const Eigen::Vector3d& normal,
-                                            const PointGrid& triangles) const;
+                                            const VectorSumTree& triangles) const;
   void smooth_axes(std::vector<PassPoint>& pass) const; // along the pass, within the tilt
   [[nodiscard]] std::vector<std::size_t> reduce(const std::vector<PassPoint>& pass) const;
   // The pass's axes leaned by the options' lead and tilt, as far as the rules allow.
@@ -300,7 +304,6 @@ private:
   Eigen::Vector3d s_, feed_dir_;
   std::vector<Eigen::Vector3d> cl_points_;
   std::vector<Eigen::Vector3d> centroids_, area_normals_;
-  std::vector<double> reach_; // each triangle's farthest vertex from its centroid, mm
   std::vector<Eigen::Vector3d> vertex_axes_;
   // Large meshes are deformed on a coarse one (coarse_deformation.hpp); none on small ones.
   std::unique_ptr<CoarseSolver> coarse_; // the tool axis at each mesh vertex (+Z: fixed)
@@ -320,6 +323,9 @@ private:
   double stay_down_ = 0.0; // mm
   std::optional<cl::ClPose> last_;
   MotionGate gate_;
+  // The limit surface the poses are placed on (its own, not the gate's: the gate stays the
+  // independent check of what is placed).
+  std::unique_ptr<LimitDistance> exact_;
   std::optional<cl::ClPose> rejected_;
   PlanSummary summary_;
 };

@@ -4,8 +4,11 @@
 // box is provably farther than the best found (or than the caller's limit), and every triangle left
 // is measured by closest_segment_triangle. The caller keeps the points and triangles alive.
 
+#include "geometry/closest_point.hpp"
+
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -23,10 +26,20 @@ class TriangleTree {
 public:
   TriangleTree(const std::vector<Eigen::Vector3d>& points,
                const std::vector<std::array<int, 3>>& triangles);
+  // With each triangle grown by `grown[t]` mm (a surface piece within that of it): the
+  // bounds that skip subtrees hold for the grown triangles, so a subtree is skipped only when
+  // every piece in it is provably farther.
+  TriangleTree(const std::vector<Eigen::Vector3d>& points,
+               const std::vector<std::array<int, 3>>& triangles, std::vector<double> grown);
 
   // The nearest mesh point to segment pq if it lies closer than `limit`, else nothing.
   [[nodiscard]] std::optional<MeshNearest> nearest(const Eigen::Vector3d& p,
                                                    const Eigen::Vector3d& q, double limit) const;
+
+  // Every triangle that may lie nearer segment pq than `bound`, nearer subtrees first:
+  // `leaf(t, nearest)` is given the pair of points nearest each other and may lower `bound`.
+  void segment_search(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double& bound,
+                      const std::function<void(int, const SegmentTriangleNearest&)>& leaf) const;
 
   // Each triangle that may lie within `radius` of p, once: every one that does, and a few
   // near ones that do not (pruned by boxes and cylinders, not measured).
@@ -91,6 +104,7 @@ private:
   const std::vector<std::array<int, 3>>* triangles_;
   std::vector<int> order_;
   std::vector<Eigen::Vector3d> centroids_;
+  std::vector<double> grown_; // per triangle, or empty
   std::vector<Node> nodes_;
 };
 
