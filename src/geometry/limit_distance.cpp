@@ -14,6 +14,22 @@
 
 namespace subfeed::geometry {
 
+// Named, not anonymous: LimitDistance::Guide holds these, and a unity build would warn that
+// a class with external linkage has a member of a type only this file can name.
+namespace limit_distance_detail {
+
+// One guide triangle's (u, v) triangle in its face's domain: uv0 + a e1 + b e2 with
+// a, b >= 0, a + b <= 1.
+struct PatchPiece {
+  int face = -1;
+  Eigen::Vector2d uv0, e1, e2;
+  [[nodiscard]] Eigen::Vector2d at(double a, double b) const { return uv0 + a * e1 + b * e2; }
+};
+
+} // namespace limit_distance_detail
+
+using limit_distance_detail::PatchPiece;
+
 namespace {
 
 // The bound is twice the largest stray sampled inside a triangle (its edge midpoints and
@@ -25,14 +41,6 @@ constexpr int most_iterations = 30;
 // mm a lifted ball ends clear of the point it met: well above Newton's precision, so the
 // check that nothing else is inside needs no more than a step or two on each piece near.
 constexpr double lift_slack_mm = 1e-7;
-
-// One guide triangle's (u, v) triangle in its face's domain: uv0 + a e1 + b e2 with
-// a, b >= 0, a + b <= 1.
-struct PatchPiece {
-  int face = -1;
-  Eigen::Vector2d uv0, e1, e2;
-  [[nodiscard]] Eigen::Vector2d at(double a, double b) const { return uv0 + a * e1 + b * e2; }
-};
 
 // The least of the convex quadratic 1/2 y'Hy + h'y over the prism a, b >= 0, a + b <= 1,
 // 0 <= t <= 1 (n = 3) or the triangle alone (n = 2). The free least where it is feasible;
