@@ -9,6 +9,7 @@
 // the planning figure shows separately.
 
 #include "bench_harness.hpp"
+#include "child_process.hpp"
 #include "wavy_cage.hpp"
 
 #include "cl/cl_writer.hpp"
@@ -29,7 +30,6 @@
 #include <unistd.h>
 #include <vector>
 
-extern char** environ;
 
 namespace {
 
@@ -39,51 +39,20 @@ namespace fs = std::filesystem;
 const std::string source = SUBFEED_SOURCE_DIR;
 const std::string subfeed_binary = SUBFEED_BINARY;
 
-struct Child {
-  double seconds = 0.0;
-  double peak_mib = 0.0; // the child's own peak resident set
-  std::string out;       // its standard output
-};
+using bench::Child;
 
-std::string slurp(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Runs `subfeed args...`, stdout to a file; exits the bench if it fails.
+// Runs `subfeed args...`; exits the bench if it fails.
 Child run_subfeed(const std::vector<std::string>& args, const fs::path& dir) {
-  const auto out = dir / "stdout.txt", err = dir / "stderr.txt";
   std::vector<std::string> all{subfeed_binary};
   all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) {
-    argv.push_back(a.data());
-  }
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0) {
-    std::fprintf(stderr, "bench_run: cannot start %s\n", argv[0]);
+  auto child = bench::run_child(all, dir);
+  if (!child.started) {
+    std::fprintf(stderr, "bench_run: cannot start %s\n", subfeed_binary.c_str());
     std::exit(1);
   }
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  rusage usage{};
-  ::wait4(pid, &status, 0, &usage);
-  Child child;
-  child.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  child.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
-  child.out = slurp(out);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (child.exit_code != 0) {
     std::fprintf(stderr, "bench_run: `subfeed %s` failed:\n%s\n", args.front().c_str(),
-                 slurp(err).c_str());
+                 child.err.c_str());
     std::exit(1);
   }
   return child;
@@ -102,7 +71,7 @@ double json_number(const std::string& text, std::string_view event, std::string_
 }
 
 long count_lines(const fs::path& file) {
-  const auto text = slurp(file);
+  const auto text = bench::slurp(file);
   return static_cast<long>(std::count(text.begin(), text.end(), '\n'));
 }
 

@@ -92,7 +92,13 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
       ->type_name("MM")
       ->check(CLI::Range(0.0, 1000.0));
   cmd.add_option("--tolerance", o.tolerance,
-                 "Chordal tolerance of mesh and passes, mm (default min(H/10, 0.0004))")
+                 "Chordal tolerance along the passes, mm (default min(H/10, 0.0004))")
+      ->check(CLI::Range(1e-6, 1.0));
+  cmd.add_option("--mesh-chord", o.mesh_chord,
+                 "Chord of the planner's mesh of the surface, where the passes are sliced; "
+                 "the poses are placed on the surface itself, mm (default min(H/4, 0.002); rings and "
+                 "--direction auto: --tolerance)")
+      ->type_name("MM")
       ->check(CLI::Range(1e-6, 1.0));
   add_gate_tolerance_flag(cmd, o.gate_tolerance);
   cmd.add_option("--level", o.level, "Bfr approximation level near irregular features")

@@ -394,6 +394,22 @@ double LimitDistance::lift(const Eigen::Vector3d& centre, const Eigen::Vector3d&
       centre, dir, radius, lift_slack_mm);
 }
 
+double LimitDistance::lowest_z_under(const Eigen::Vector3d& start) const {
+  // The foot of a point depth d below a bottom of curvature k sits 1 / (1 + d k) of the way
+  // from the lowest point to straight above the query: two rounds from a metre down leave it
+  // far under a nanometre high on any part (and exact on a flat bottom).
+  constexpr double depth_mm = 1000.0;
+  Eigen::Vector3d at = start;
+  for (int round = 0; round < 2; ++round) {
+    const auto foot = nearest(at - depth_mm * Eigen::Vector3d::UnitZ(), 2.0 * depth_mm);
+    if (!foot) {
+      break;
+    }
+    at = foot->on_surface;
+  }
+  return std::min(at.z(), start.z());
+}
+
 long LimitDistance::guide_triangles() const {
   return static_cast<long>(guide_->triangles.size());
 }

@@ -14,22 +14,25 @@ constexpr double worth_it = 0.75;
 
 } // namespace
 
-double predicted_vertices(const LimitSurface& surface, double chord_tolerance) {
+double predicted_vertices(const LimitSurface& surface, double chord_tolerance,
+                          double min_edge_mm) {
   double sum = 0.0;
-  for (const int rate : rates_for_tolerance(surface, chord_tolerance, uncapped_rate)) {
+  for (const int rate :
+       rates_for_tolerance(surface, chord_tolerance, uncapped_rate, 0.0, min_edge_mm)) {
     sum += static_cast<double>(rate) * rate;
   }
   return sum;
 }
 
 Expected<std::optional<PlanningCage>> planning_cage(const Cage& cage, const LimitSurface& surface,
-                                                    double chord_tolerance, int max_levels) {
+                                                    double chord_tolerance, int max_levels,
+                                                    double min_edge_mm) {
   std::optional<PlanningCage> best;
-  double last = predicted_vertices(surface, chord_tolerance);
+  double last = predicted_vertices(surface, chord_tolerance, min_edge_mm);
   for (int levels = 1; levels <= max_levels; ++levels) {
     SUBFEED_TRY_ASSIGN(auto finer, refine_cage(cage, levels));
     SUBFEED_TRY_ASSIGN(auto finer_surface, LimitSurface::build(finer, surface.approx_level()));
-    const double predicted = predicted_vertices(finer_surface, chord_tolerance);
+    const double predicted = predicted_vertices(finer_surface, chord_tolerance, min_edge_mm);
     if (predicted > worth_it * last) {
       break;
     }

@@ -49,7 +49,7 @@ double SurfaceMesh::concave_curvature(int i) const {
 }
 
 std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_tolerance,
-                                     int max_rate, double max_edge_mm) {
+                                     int max_rate, double max_edge_mm, double min_edge_mm) {
   std::vector<int> rates(static_cast<std::size_t>(surface.face_count()), 0);
   constexpr int grid = 5;
   for (int f = 0; f < surface.face_count(); ++f) {
@@ -71,6 +71,9 @@ std::vector<int> rates_for_tolerance(const LimitSurface& surface, double chord_t
     }
     // A chord over parameter step d/rate sags by |S''(d, d).n| / (8 rate^2).
     double rate = std::ceil(std::sqrt(worst / (8.0 * chord_tolerance)));
+    if (min_edge_mm > 0.0) {
+      rate = std::min(rate, std::ceil(stretch / min_edge_mm));
+    }
     if (max_edge_mm > 0.0) {
       rate = std::max(rate, std::ceil(stretch / max_edge_mm));
     }

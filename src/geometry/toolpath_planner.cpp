@@ -52,6 +52,8 @@ constexpr double ring_preference = 0.02;
 // passes inserted only past 2 % (the scallop there may exceed the target by about 4 %).
 // At 1 %, 3 % more cutting on the dome, and the same worst scallop.
 constexpr double ring_allowance = 0.02;
+// mm a rapid straight across between two passes keeps from the part, beyond the ball.
+constexpr double link_margin_mm = 0.05;
 // Solves measured on the fine mesh after those on the coarse one (deform_on_coarse).
 constexpr int fine_rounds = 8;
 
@@ -61,6 +63,34 @@ cl::ClPose pose_at(const Eigen::Vector3d& tip, const Eigen::Vector3d& axis, cl::
 }
 
 } // namespace
+
+double path_tolerance(const PlanOptions& options) {
+  return options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
+}
+
+namespace {
+
+bool rings_possible(const PlanOptions& options) {
+  return options.pattern == PassPattern::concentric || options.choose_direction;
+}
+
+} // namespace
+
+double mesh_chord(const PlanOptions& options) {
+  // Rings bend across the mesh where parallel passes run nearly straight: sliced over
+  // coarse cells they turn at every cell edge (the tool's tilt from their feed swung 2 to 3
+  // degrees at 2 um on the lifted dome), so they keep the fine chord.
+  if (rings_possible(options)) {
+    return options.mesh_chord.value_or(path_tolerance(options));
+  }
+  return options.mesh_chord.value_or(std::min(options.scallop / 4.0, 2e-3));
+}
+
+double min_cell(const PlanOptions& options) {
+  // The rings' mesh as it was cut before cells had a floor: at 0.1 mm the dome's rings at
+  // H 0.01 took 3 links more by retract, 18 % more link length.
+  return options.min_cell_mm.value_or(rings_possible(options) ? 0.0 : 0.1);
+}
 
 ToolpathPlanner::ToolpathPlanner(PlanOptions options, SurfaceMesh mesh, MotionGate gate)
     : options_(std::move(options)), mesh_(std::move(mesh)), gate_(std::move(gate)) {}
@@ -75,12 +105,14 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     }
     return StageClock(times[stage]);
   };
-  const double chord = options.tolerance.value_or(std::min(options.scallop / 10.0, 4e-4));
+  const double tolerance = path_tolerance(options);
+  const double chord = mesh_chord(options);
   std::optional<PlanningCage> finer;
   SUBFEED_TRY_ASSIGN(auto mesh, [&]() -> Expected<SurfaceMesh> {
     const auto clock = enter(PlanStage::meshing);
     if (options.max_cage_levels > 0) {
-      SUBFEED_TRY_ASSIGN(finer, planning_cage(cage, surface, chord, options.max_cage_levels));
+      SUBFEED_TRY_ASSIGN(finer, planning_cage(cage, surface, chord, options.max_cage_levels,
+                                              min_cell(options)));
     }
     // Cells no longer than two flat step-overs: the tool's reach is decided per vertex, so
     // a pass ends within that of where the reach does even on a flat face. (One step-over
@@ -91,15 +123,23 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     return mesh_surface(
         finer ? finer->cage : cage, s,
         rates_for_tolerance(s, chord, options.max_rate,
-                            reach_cells * flat_step(options.ball_radius, options.scallop)),
+                            reach_cells * flat_step(options.ball_radius, options.scallop),
+                            min_cell(options)),
         &share);
   }());
-  // Its own mesh, finer than the planner's: what it passes does not rest on the planner.
+  SUBFEED_TRY_ASSIGN(auto exact, [&] {
+    const auto clock = enter(PlanStage::gate_mesh);
+    return LimitDistance::build(finer ? finer->cage : cage,
+                                {.approx_level = surface.approx_level()});
+  }());
+  // Its own surface distance, apart from the planner's: what it passes does not rest on
+  // the planner.
   const double gate_tolerance =
-      options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * chord));
+      options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * tolerance));
   Fixture fixture = options.fixture;
   if (options.floor_at_lowest) {
-    fixture.floor_z = lowest_z(mesh); // within the chord, which the floor tolerance covers
+    fixture.floor_z = exact.lowest_z_under(
+        std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }));
   }
   const GateOptions gate_options{options.ball_radius, gate_tolerance, options.whole_tool,
                                  options.tool, fixture};
@@ -109,11 +149,6 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
     return finer ? MotionGate::build(finer->cage, finer->surface, gate_options, &share)
                  : MotionGate::build(cage, surface, gate_options, &share);
   }());
-  SUBFEED_TRY_ASSIGN(auto exact, [&] {
-    const auto clock = enter(PlanStage::gate_mesh);
-    return LimitDistance::build(finer ? finer->cage : cage,
-                                {.approx_level = surface.approx_level()});
-  }());
   auto planned = options;
   planned.fixture = fixture;
   ToolpathPlanner planner(planned, std::move(mesh), std::move(gate));
@@ -121,7 +156,8 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
   planner.summary_.fixture = fixture;
   planner.summary_.cage_levels = finer ? finer->levels : 0;
   planner.summary_.cage_faces = finer ? finer->cage.face_count() : cage.face_count();
-  planner.chord_tolerance_ = chord;
+  planner.path_tolerance_ = tolerance;
+  planner.mesh_chord_ = chord;
   {
     const StageClock clock(times[PlanStage::meshing]); // the ball centres over the mesh
     planner.place_cl_points();
@@ -363,21 +399,27 @@ Eigen::Vector3d ToolpathPlanner::vertex_axis(const Eigen::Vector3d& contact,
                      options_.max_tilt_deg);
 }
 
-std::vector<std::array<int, 3>> ToolpathPlanner::triangles_cut() const {
+std::vector<int> ToolpathPlanner::sliced_triangles() const {
+  auto out = cut_triangles_;
+  std::ranges::copy(limit_band(), std::back_inserter(out));
+  return out;
+}
+
+std::vector<std::array<int, 3>> ToolpathPlanner::triangles_of(const std::vector<int>& ids) const {
   std::vector<std::array<int, 3>> out;
-  out.reserve(cut_triangles_.size());
-  for (const int t : cut_triangles_) {
+  out.reserve(ids.size());
+  for (const int t : ids) {
     out.push_back(mesh_.triangles[static_cast<std::size_t>(t)]);
   }
   return out;
 }
 
-std::vector<unsigned char> ToolpathPlanner::depth_cut() const {
+std::vector<unsigned char> ToolpathPlanner::depth_of(const std::vector<int>& ids) const {
   const auto& depth = deformation_.insertion.depth;
   std::vector<unsigned char> out;
   if (!depth.empty()) {
-    out.reserve(cut_triangles_.size());
-    for (const int t : cut_triangles_) {
+    out.reserve(ids.size());
+    for (const int t : ids) {
       out.push_back(depth[static_cast<std::size_t>(t)]);
     }
   }
@@ -403,9 +445,9 @@ void ToolpathPlanner::smooth_axes(std::vector<PassPoint>& pass) const {
 }
 
 std::vector<std::size_t> ToolpathPlanner::reduce(const std::vector<PassPoint>& pass) const {
-  // Half the mesh tolerance: the chord error of the mesh, this reduction and the cleared
-  // midpoints (clear_pass) together stay under 1 um of gouge at the default tolerance.
-  const double tol = 0.5 * chord_tolerance_;
+  // Half the path tolerance: this reduction and the cleared midpoints (clear_pass) together
+  // stay under 1 um of gouge at the default tolerance.
+  const double tol = 0.5 * path_tolerance_;
   std::vector<std::size_t> kept{0};
   std::size_t anchor = 0;
   for (std::size_t j = 2; j < pass.size(); ++j) {
@@ -469,7 +511,7 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
     Eigen::Vector3d centre = (1.0 - t) * e + t * s + options_.ball_radius * axis;
     const double lift = exact_->lift(centre, axis, options_.ball_radius);
     if (lift > 1e-9) {
-      centre += (lift + chord_tolerance_) * axis;
+      centre += (lift + path_tolerance_) * axis;
       rise = std::max(rise, lift);
     }
     return pose_at(centre - options_.ball_radius * axis, axis, cl::MoveKind::feed, options_.feed);
@@ -483,7 +525,7 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
     const auto next = i < steps ? cleared(t) : start;
     const auto mid = cleared((static_cast<double>(i) - 0.5) / steps);
     const Eigen::Vector3d straight = 0.5 * (tip_of(previous) + tip_of(next));
-    if ((tip_of(mid) - straight).dot(axis_of(mid)) > chord_tolerance_) {
+    if ((tip_of(mid) - straight).dot(axis_of(mid)) > path_tolerance_) {
       poses.push_back(mid);
     }
     if (rise > length) {
@@ -523,13 +565,37 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
     const Eigen::Vector3d above_end = tip_of(*last_) + options_.clearance * axis_of(*last_);
     const Eigen::Vector3d end_axis = axis_of(*last_);
     SUBFEED_TRY(put(pose_at(above_end, end_axis, cl::MoveKind::retract, options_.feed), sink));
-    if ((above_end - above_start).norm() > link_distance_) {
+    // A short hop goes straight across at the clearance, or, where the part rises between
+    // (a knob's crown, the far side of a ridge), over it a clearance above the higher end;
+    // a long one at the safe height: a rapid may not touch the part.
+    const double r = options_.ball_radius;
+    const Eigen::Vector3d start_axis = axis_of(start);
+    const auto blocked = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& from_axis,
+                             const Eigen::Vector3d& to, const Eigen::Vector3d& to_axis) {
+      return exact_->nearest(from + r * from_axis, to + r * to_axis, r + link_margin_mm)
+          .has_value();
+    };
+    const auto at_height = [&](const Eigen::Vector3d& p, double z) {
+      return Eigen::Vector3d(p.x(), p.y(), z);
+    };
+    double z = safe_z_;
+    if ((above_end - above_start).norm() <= link_distance_) {
+      const double hop = std::max(above_end.z(), above_start.z()) + options_.clearance;
+      if (!blocked(above_end, end_axis, above_start, start_axis)) {
+        z = -std::numeric_limits<double>::infinity(); // straight across
+      } else if (hop < safe_z_ &&
+                 !blocked(above_end, end_axis, at_height(above_end, hop), end_axis) &&
+                 !blocked(at_height(above_end, hop), end_axis, at_height(above_start, hop),
+                          start_axis) &&
+                 !blocked(at_height(above_start, hop), start_axis, above_start, start_axis)) {
+        z = hop;
+      }
+    }
+    if (std::isfinite(z)) {
       SUBFEED_TRY(
-          put(pose_at({above_end.x(), above_end.y(), safe_z_}, end_axis, cl::MoveKind::rapid, 0.0),
-              sink));
-      SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
-                              cl::MoveKind::rapid, 0.0),
-                      sink));
+          put(pose_at(at_height(above_end, z), end_axis, cl::MoveKind::rapid, 0.0), sink));
+      SUBFEED_TRY(
+          put(pose_at(at_height(above_start, z), start_axis, cl::MoveKind::rapid, 0.0), sink));
     }
   } else {
     SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
@@ -666,7 +732,7 @@ double ToolpathPlanner::place_on_surface(PassPoint& p) const {
   }
   // Off the surface by no more than the CL mesh's chord could leave it: lowered along the
   // surface's own normal there, onto the CL surface.
-  const double band = 8.0 * chord_tolerance_ + 1e-6;
+  const double band = 8.0 * mesh_chord_ + 1e-6;
   if (const auto near = exact_->nearest(p.centre, r + band)) {
     const Eigen::Vector3d out = p.centre - near->on_surface;
     if (out.norm() > 0.0) {
@@ -723,27 +789,48 @@ std::vector<double> ToolpathPlanner::material_left(const std::vector<char>& reac
 void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass) {
   // A lift beyond this is a hollow the ball rides over, not the rounding of a point
   // interpolated on a CL mesh edge.
-  const double hollow = 2.0 * chord_tolerance_;
+  const double hollow = 2.0 * mesh_chord_;
   const auto lift_clear = [&](PassPoint& p) { return place_on_surface(p); };
   for (auto& p : pass) {
     if (const double lift = lift_clear(p); lift > hollow) {
       lifted_.push_back({p.contact, lift});
     }
   }
-  // Where the pass turns sharply (over a hollow, round a boundary corner) the ball between
-  // two clear points can still cut in: the cleared midpoint goes in between, recursively,
-  // wherever it had to move more than a quarter of the tolerance.
+  // Between two placed points the ball can still cut in (where the pass turns over a hollow
+  // or a crease, or the surface bends one way then the other between them), or float off a
+  // concave stretch by the chord's sagitta (on the planner's mesh, cells run to two
+  // step-overs: up to 7 um on the bowl, most of the scallop). A placed point goes in where
+  // the straight sweep comes nearest, or halfway where it floats, recursively, wherever
+  // the sweep is off the surface by more than a quarter of the tolerance.
   std::vector<PassPoint> out;
   out.reserve(pass.size());
+  const double r = options_.ball_radius;
+  const double off = 0.25 * path_tolerance_;
   const auto refine = [&](auto& self, const PassPoint& a, const PassPoint& b, int depth) -> void {
-    PassPoint mid{0.5 * (a.centre + b.centre), 0.5 * (a.contact + b.contact),
-                  (a.normal + b.normal).normalized(),
-                  within_tilt((a.axis + b.axis).normalized(), options_.max_tilt_deg)};
-    if (lift_clear(mid) > 0.25 * chord_tolerance_ && depth < 8) {
-      self(self, a, mid, depth + 1);
-      out.push_back(mid);
-      self(self, mid, b, depth + 1);
+    if (depth >= 8) {
+      return;
     }
+    double t = 0.5;
+    const Eigen::Vector3d ab = b.centre - a.centre;
+    if (const auto near = exact_->nearest(a.centre, b.centre, r - off)) {
+      t = std::clamp(ab.squaredNorm() > 0.0
+                         ? (near->on_segment - a.centre).dot(ab) / ab.squaredNorm()
+                         : 0.5,
+                     0.05, 0.95);
+    } else if (exact_->nearest(a.centre + 0.5 * ab, r + off)) {
+      return; // touching within the tolerance
+    }
+    PassPoint mid{(1 - t) * a.centre + t * b.centre, (1 - t) * a.contact + t * b.contact,
+                  ((1 - t) * a.normal + t * b.normal).normalized(),
+                  within_tilt(((1 - t) * a.axis + t * b.axis).normalized(), options_.max_tilt_deg)};
+    const Eigen::Vector3d straight = mid.centre;
+    lift_clear(mid);
+    if ((mid.centre - straight).norm() <= off) {
+      return; // over a hollow the ball rides over, it stays off the surface
+    }
+    self(self, a, mid, depth + 1);
+    out.push_back(mid);
+    self(self, mid, b, depth + 1);
   };
   for (std::size_t i = 0; i < pass.size(); ++i) {
     if (i > 0) {
@@ -796,48 +883,141 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
   return passes;
 }
 
-std::vector<std::vector<ToolpathPlanner::PassPoint>> ToolpathPlanner::floor_limit_passes() {
+bool ToolpathPlanner::limited_by(SmoothLimit limit) const {
+  const auto any = [&](ReachLimit r) { return std::ranges::find(tool_reach_, r) != tool_reach_.end(); };
+  return limit == SmoothLimit::floor ? options_.fixture.floor_z && any(ReachLimit::floor)
+                                     : any(ReachLimit::tilt);
+}
+
+double ToolpathPlanner::margin(SmoothLimit limit, const Eigen::Vector3d& centre,
+                               const Eigen::Vector3d& normal) const {
+  if (limit == SmoothLimit::floor) {
+    // A ball on a face lying on the floor touches it, as the reach allows (within the
+    // floor's tolerance): cut there, not clipped off.
+    return centre.z() - options_.ball_radius -
+           (*options_.fixture.floor_z - options_.fixture.stock_margin) +
+           0.5 * AssemblyClearance::floor_tolerance_mm;
+  }
+  return normal.z() - std::cos(reach_angle_deg(reach_options_) * std::numbers::pi / 180.0);
+}
+
+double ToolpathPlanner::vertex_margin(SmoothLimit limit, int v) const {
+  return margin(limit, cl_points_[static_cast<std::size_t>(v)],
+                mesh_.normals[static_cast<std::size_t>(v)]);
+}
+
+bool ToolpathPlanner::smoothly_limited(int v) const {
+  const auto r = tool_reach_[static_cast<std::size_t>(v)];
+  return r == ReachLimit::reached || r == ReachLimit::floor || r == ReachLimit::tilt;
+}
+
+std::vector<int> ToolpathPlanner::limit_band() const {
+  std::vector<int> band;
+  if (!limited_by(SmoothLimit::floor) && !limited_by(SmoothLimit::tilt)) {
+    return band;
+  }
+  for (int i = 0; i < mesh_.triangle_count(); ++i) {
+    const auto& t = mesh_.triangles[static_cast<std::size_t>(i)];
+    const auto reached = [&](int v) {
+      return tool_reach_[static_cast<std::size_t>(v)] == ReachLimit::reached;
+    };
+    if (std::ranges::all_of(t, [&](int v) { return smoothly_limited(v); }) &&
+        std::ranges::any_of(t, reached) && !std::ranges::all_of(t, reached)) {
+      band.push_back(i);
+    }
+  }
+  return band;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::clipped_at(std::vector<std::vector<PassPoint>> pieces, SmoothLimit limit) const {
+  if (!limited_by(limit)) {
+    return pieces;
+  }
+  // Between two pass points the ball centres and normals are linear, as on the mesh: a
+  // piece ends where the margin crosses zero, to within the cell's curvature.
+  std::vector<std::vector<PassPoint>> out;
+  for (auto& pass : pieces) {
+    out.emplace_back();
+    double before = 0.0;
+    for (std::size_t i = 0; i < pass.size(); ++i) {
+      const double here = margin(limit, pass[i].centre, pass[i].normal);
+      if (i > 0 && (before >= 0.0) != (here >= 0.0)) {
+        const double t = before / (before - here);
+        const auto& a = pass[i - 1];
+        const auto& b = pass[i];
+        out.back().push_back({(1 - t) * a.centre + t * b.centre,
+                              (1 - t) * a.contact + t * b.contact,
+                              ((1 - t) * a.normal + t * b.normal).normalized(),
+                              (here >= 0.0 ? b : a).axis});
+        if (here < 0.0) {
+          out.emplace_back();
+        }
+      }
+      if (here >= 0.0) {
+        out.back().push_back(std::move(pass[i]));
+      }
+      before = here;
+    }
+  }
+  std::erase_if(out, [](const auto& piece) { return piece.size() < 2; });
+  return out;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>>
+ToolpathPlanner::within_limits(std::vector<PassPoint> pass,
+                               std::optional<SmoothLimit> except) const {
+  std::vector<std::vector<PassPoint>> pieces;
+  pieces.push_back(std::move(pass));
+  for (const auto limit : {SmoothLimit::floor, SmoothLimit::tilt}) {
+    if (limit != except) {
+      pieces = clipped_at(std::move(pieces), limit);
+    }
+  }
+  return pieces;
+}
+
+std::vector<std::vector<ToolpathPlanner::PassPoint>> ToolpathPlanner::limit_passes() {
   std::vector<std::vector<PassPoint>> passes;
-  if (!options_.fixture.floor_z ||
-      std::ranges::find(tool_reach_, ReachLimit::floor) == tool_reach_.end()) {
-    return passes;
-  }
-  // The ball's bottom over the lowest it may go, per vertex: linear along every edge, as the
-  // ball centres are, so its level set is the band's exact edge.
-  const double lowest = *options_.fixture.floor_z - options_.fixture.stock_margin;
-  std::vector<double> over(mesh_.points.size());
-  for (std::size_t v = 0; v < over.size(); ++v) {
-    over[v] = cl_points_[v].z() - options_.ball_radius - lowest;
-  }
-  // The triangles the level crosses, with no corner out of reach for another reason.
-  std::vector<std::array<int, 3>> between;
-  for (const auto& t : mesh_.triangles) {
-    const auto value = [&](int k) { return over[std::size_t(t[std::size_t(k)])]; };
-    const double low = std::min({value(0), value(1), value(2)});
-    const double high = std::max({value(0), value(1), value(2)});
-    if (low < floor_limit_above_mm && high > floor_limit_above_mm &&
-        std::ranges::all_of(t, [&](int v) {
-          const auto r = tool_reach_[std::size_t(v)];
-          return r == ReachLimit::reached || r == ReachLimit::floor;
-        })) {
-      between.push_back(t);
+  for (const auto limit : {SmoothLimit::floor, SmoothLimit::tilt}) {
+    if (!limited_by(limit)) {
+      continue;
     }
-  }
-  MeshSlicer slicer(between, over);
-  for (const auto& line : slicer.slice(floor_limit_above_mm)) {
-    std::vector<PassPoint> pass;
-    for (const auto& e : line) {
-      const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
-      // The axis of the end in reach: the other end's was never cleared for the whole tool.
-      const auto kept = tool_reach_[a] == ReachLimit::reached ? a : b;
-      pass.push_back({(1 - e.t) * cl_points_[a] + e.t * cl_points_[b],
-                      (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b],
-                      ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized(),
-                      vertex_axes_[kept]});
+    // The margin per vertex is linear along every edge, as the ball centres are, so its
+    // level set is the limit's edge on the mesh.
+    // The floor's edge pass keeps the ball's bottom a little over it, against rounding.
+    const double level = limit == SmoothLimit::floor
+                             ? floor_limit_above_mm + 0.5 * AssemblyClearance::floor_tolerance_mm
+                             : 0.0;
+    std::vector<double> field(mesh_.points.size());
+    for (int v = 0; v < mesh_.vertex_count(); ++v) {
+      field[static_cast<std::size_t>(v)] = vertex_margin(limit, v);
     }
-    if (pass.size() >= 2) {
-      clear_pass(pass);
-      passes.push_back(std::move(pass));
+    std::vector<std::array<int, 3>> crossed;
+    for (const auto& t : mesh_.triangles) {
+      const auto value = [&](int k) { return field[std::size_t(t[std::size_t(k)])] - level; };
+      if (std::min({value(0), value(1), value(2)}) < 0.0 &&
+          std::max({value(0), value(1), value(2)}) > 0.0 &&
+          std::ranges::all_of(t, [&](int v) { return smoothly_limited(v); })) {
+        crossed.push_back(t);
+      }
+    }
+    MeshSlicer slicer(crossed, field);
+    for (const auto& line : slicer.slice(level)) {
+      std::vector<PassPoint> pass;
+      for (const auto& e : line) {
+        const auto a = static_cast<std::size_t>(e.a), b = static_cast<std::size_t>(e.b);
+        // The axis of the end in reach: the other end's was never cleared for the whole tool.
+        const auto kept = tool_reach_[a] == ReachLimit::reached ? a : b;
+        pass.push_back({(1 - e.t) * cl_points_[a] + e.t * cl_points_[b],
+                        (1 - e.t) * mesh_.points[a] + e.t * mesh_.points[b],
+                        ((1 - e.t) * mesh_.normals[a] + e.t * mesh_.normals[b]).normalized(),
+                        vertex_axes_[kept]});
+      }
+      for (auto& piece : within_limits(std::move(pass), limit)) {
+        clear_pass(piece);
+        passes.push_back(std::move(piece));
+      }
     }
   }
   return passes;
@@ -899,9 +1079,9 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>&
                            options_.max_tilt_deg);
       pass.push_back(p);
     }
-    if (pass.size() >= 2) {
-      clear_pass(pass);
-      passes.push_back(std::move(pass));
+    for (auto& piece : within_limits(std::move(pass))) {
+      clear_pass(piece);
+      passes.push_back(std::move(piece));
     }
   }
   // Along the feed direction, sorted across it.
@@ -916,11 +1096,11 @@ ToolpathPlanner::cut_level(MeshSlicer& slicer, const std::vector<unsigned char>&
   return passes;
 }
 
-void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out,
-                                 const std::vector<std::array<int, 3>>& cut,
+void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out, const std::vector<int>& sliced,
                                  const TriangleTree& design) {
-  const auto inserted_depth = depth_cut();
-  MeshSlicer slicer(cut, deformation_.deformed);
+  const auto inserted_depth = depth_of(sliced);
+  const auto triangles = triangles_of(sliced); // the slicer keeps a view of them
+  MeshSlicer slicer(triangles, deformation_.deformed);
   const auto [first, step, planes] = deformation_.planes;
   const int deepest = deformation_.insertion.max_depth;
   const long per_plane = 1L << max_insertion_depth;
@@ -959,15 +1139,17 @@ void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out,
 
 Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
   const StageClock clock(summary_.times[PlanStage::slicing]);
-  // Only the triangles in reach: a pass ends where the tool's reach does.
-  const auto cut = triangles_cut();
+  // Only the triangles in reach, and those across the floor band's edge, where the passes
+  // end exactly at it (within_limits): a pass ends where the tool's reach does.
+  const auto sliced = sliced_triangles();
+  const auto cut = triangles_of(cut_triangles_);
   const TriangleTree design = design_tree();
   // Two cores: a thread cuts the levels into passes while this one links them, gates every
   // pose and hands it on, in the same order as one thread would. The cutting side writes only
   // the slicer, the lifted points and the path's balls; this side only the last pose, the
   // gate and the summary.
   BoundedQueue<CutLevel> levels(levels_ahead);
-  std::jthread cutter([&] { cut_levels(levels, cut, design); });
+  std::jthread cutter([&] { cut_levels(levels, sliced, design); });
   // Between rings, inserted passes are short pieces spread round the part (behind each
   // hollow it must go round); cut ring by ring they would each cost a retract and a rapid
   // across it. They are cut after the rings instead, nearest first, mostly linked by feed.
@@ -996,7 +1178,7 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   }
   // And one along the exact edge of the band round the foot the ball reaches only below the
   // floor: the cut triangles end up to a mesh cell short of it.
-  for (auto& whole : floor_limit_passes()) {
+  for (auto& whole : limit_passes()) {
     smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {
       SUBFEED_TRY(emit_pass(pass, sink, design));

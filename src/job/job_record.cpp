@@ -229,7 +229,7 @@ std::string encode_job(const JobRecord& o) {
       "axis_radius={} axis={} one_way={} feed={} plunge_feed={} clearance={} "
       "tolerance={} level={} refine={} spindle={} stay_down={} check_cage={} "
       "gate_tolerance={} max_tilt={} whole_tool={} flute={} shank={} stickout={} "
-      "holder={} floor={} stock_margin={} clearance_min={} lead={} tilt={}{}",
+      "holder={} floor={} stock_margin={} clearance_min={} lead={} tilt={} mesh_chord={}{}",
       escape(o.cage), escape(o.machine), escape(job_files(o).nc.replace_extension().string()),
       escape(p.tool), number(p.scallop), escape(p.direction), p.baseline ? 1 : 0,
       number(p.axis_radius), escape(p.axis), p.one_way ? 1 : 0, number(p.feed),
@@ -237,7 +237,8 @@ std::string encode_job(const JobRecord& o) {
       number(o.spindle_rpm), number(p.stay_down), escape(o.check_cage), number(p.gate_tolerance),
       number(p.max_tilt), p.whole_tool ? 1 : 0, number(p.flute), number(p.shank),
       number(p.stickout), escape(joined(p.holder)), escape(p.floor), number(p.stock_margin),
-      number(p.clearance_min), number(p.lead), number(p.tilt), setup_fields(o.setup));
+      number(p.clearance_min), number(p.lead), number(p.tilt), number(p.mesh_chord),
+      setup_fields(o.setup));
 }
 
 Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
@@ -300,6 +301,9 @@ Expected<JobRecord> decode_job(std::string_view text, const Where& where) {
   o.plan.stay_down = fields.contains("stay_down") ? real("stay_down") : 0.0;
   if (fields.contains("gate_tolerance")) {
     o.plan.gate_tolerance = real("gate_tolerance");
+  }
+  if (fields.contains("mesh_chord")) {
+    o.plan.mesh_chord = real("mesh_chord");
   }
   if (fields.contains("max_tilt")) {
     o.plan.max_tilt = real("max_tilt");

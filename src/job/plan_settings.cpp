@@ -66,6 +66,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& o) {
   if (o.tolerance > 0.0) {
     options.tolerance = o.tolerance;
   }
+  if (o.mesh_chord > 0.0) {
+    options.mesh_chord = o.mesh_chord;
+  }
   if (o.whole_tool) {
     options.whole_tool = true;
     SUBFEED_TRY_ASSIGN(options.tool, tool_assembly_from(o));

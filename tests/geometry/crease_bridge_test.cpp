@@ -2,7 +2,7 @@
 // edge, touching it all the way and cutting nothing below the surface. On the sample ridge
 // (crease along y = 0) cut across the crease.
 
-#include "geometry/closest_point.hpp"
+#include "geometry/limit_distance.hpp"
 #include "geometry/limit_surface.hpp"
 #include "geometry/obj_reader.hpp"
 #include "geometry/toolpath_planner.hpp"
@@ -37,32 +37,18 @@ TEST_CASE("a sharp crease is bridged by the ball rolling over its edge", "[slow]
   INFO(s.stay_down_links << " stay-down links, " << over_edge.size() << " poses over the edge");
   CHECK(s.stay_down_links * 10 >= s.passes * 9); // the crease no longer retracts
   REQUIRE(over_edge.size() > 100);
-  // The triangles near the crease: the ball's nearest surface point must be among them.
-  const auto& mesh = planner->mesh();
-  std::vector<std::array<int, 3>> near;
-  for (const auto& t : mesh.triangles) {
-    if (std::abs(mesh.points[static_cast<std::size_t>(t[0])].y()) < 1.5) {
-      near.push_back(t);
-    }
-  }
+  // Measured on the limit surface itself, where the poses are placed.
+  const auto exact = geometry::LimitDistance::build(*cage);
+  REQUIRE(exact);
   double worst_gap = 0.0, worst_cut = 0.0, farthest_contact = 0.0;
   for (const auto& p : over_edge) {
     const Eigen::Vector3d centre = Eigen::Vector3d(p.tip[0], p.tip[1], p.tip[2]) +
                                    o.ball_radius * Eigen::Vector3d(p.axis[0], p.axis[1], p.axis[2]);
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d contact;
-    for (const auto& t : near) {
-      const auto q = geometry::closest_on_triangle(
-          centre, mesh.points[static_cast<std::size_t>(t[0])],
-          mesh.points[static_cast<std::size_t>(t[1])], mesh.points[static_cast<std::size_t>(t[2])]);
-      if ((q - centre).norm() < best) {
-        best = (q - centre).norm();
-        contact = q;
-      }
-    }
-    worst_gap = std::max(worst_gap, best - o.ball_radius);
-    worst_cut = std::max(worst_cut, o.ball_radius - best);
-    farthest_contact = std::max(farthest_contact, std::abs(contact.y()));
+    const auto near = exact->nearest(centre, 2.0 * o.ball_radius);
+    REQUIRE(near);
+    worst_gap = std::max(worst_gap, near->distance - o.ball_radius);
+    worst_cut = std::max(worst_cut, o.ball_radius - near->distance);
+    farthest_contact = std::max(farthest_contact, std::abs(near->on_surface.y()));
   }
   INFO("ball off the surface by up to " << worst_gap << " mm, into it by up to " << worst_cut
                                         << " mm, touching it up to " << farthest_contact

@@ -66,6 +66,9 @@ TEST_CASE("auto feed direction: a trough at 45 degrees is cut along it", "[slow]
   }
   auto o = trough_options();
   o.choose_direction = true;
+  // The same mesh for both (a choice that may end in rings is meshed more finely).
+  o.mesh_chord = geometry::mesh_chord(o);
+  o.min_cell_mm = geometry::min_cell(o);
   const auto chosen = planned(cage, o);
   CHECK(chosen.direction_deg == 45.0);
   // Off the axes, the choice is confirmed by full solves of it and of the cheaper axis, and

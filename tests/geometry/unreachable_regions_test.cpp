@@ -52,7 +52,8 @@ namespace {
 // Where the ball cannot reach is settled before the passes: one deformation solve reaches
 // the same code at a fraction of the cost under the sanitizers. The regions' boxes are the
 // mesh's vertices: `tolerance` (mm; empty: the plan's own) sets how finely they fall.
-PlanSummary summary_under_3mm_ball(const Cage& cage, std::optional<double> tolerance) {
+PlanSummary summary_under_3mm_ball(const Cage& cage, std::optional<double> tolerance,
+                                   std::optional<double> mesh_chord = {}) {
   const auto surface = LimitSurface::build(cage);
   REQUIRE(surface);
   PlanOptions options;
@@ -60,6 +61,7 @@ PlanSummary summary_under_3mm_ball(const Cage& cage, std::optional<double> toler
   options.scallop = 0.01;
   options.refine_iterations = 1;
   options.tolerance = tolerance;
+  options.mesh_chord = mesh_chord;
   const auto planner = ToolpathPlanner::prepare(cage, *surface, options);
   REQUIRE(planner);
   return planner->summary();
@@ -89,8 +91,11 @@ TEST_CASE("a trough narrower than the ball along the passes is found too", "[slo
   // z = 0.25 x^2, flat along y; the passes run along x (planes across y), so the radius
   // across them is infinite, but along them it is 2 mm at the bottom: a 3 mm ball misses
   // the strip where 0.5 / (1 + x^2 / 4)^1.5 >= 1/3, |x| <= 1.114 mm, the trough's length.
-  // The strip's edge at 1.114 mm needs the plan's own fine mesh to fall within 0.1 mm.
-  const auto s = summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0), {});
+  // The strip's edge falls within a cell of the planner's mesh: at its default chord (H/4)
+  // cells across the trough's bottom are 0.2 mm, so a 0.4 um chord is asked for to place it
+  // within 0.1 mm.
+  const auto s =
+      summary_under_3mm_ball(subfeed::testing::grid_cage(9, 2.0, 0.25, 0.0), {}, 4e-4);
   REQUIRE(s.unreachable_regions.size() == 1);
   const auto& r = s.unreachable_regions.front();
   CHECK(r.high.x() == Approx(1.114).margin(0.1));

@@ -67,6 +67,10 @@ public:
   [[nodiscard]] double lift(const Eigen::Vector3d& centre, const Eigen::Vector3d& dir,
                             double radius) const;
 
+  // The z of the surface's lowest point in the hollow under `start` (mm), found as the foot
+  // of points far below: a mesh's lowest vertex, made exact.
+  [[nodiscard]] double lowest_z_under(const Eigen::Vector3d& start) const;
+
   // The guide mesh's size and its largest bound, mm (for reports and benchmarks).
   [[nodiscard]] long guide_triangles() const;
   [[nodiscard]] double largest_bound() const;

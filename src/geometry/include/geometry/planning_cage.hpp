@@ -28,9 +28,12 @@ struct PlanningCage {
 [[nodiscard]] Expected<std::optional<PlanningCage>> planning_cage(const Cage& cage,
                                                                   const LimitSurface& surface,
                                                                   double chord_tolerance,
-                                                                  int max_levels);
+                                                                  int max_levels,
+                                                                  double min_edge_mm = 0.0);
 
-// The predicted vertex count of a mesh of `surface` within `chord_tolerance` (mm).
-[[nodiscard]] double predicted_vertices(const LimitSurface& surface, double chord_tolerance);
+// The predicted vertex count of a mesh of `surface` within `chord_tolerance` (mm), cells no
+// shorter than `min_edge_mm` (rates_for_tolerance).
+[[nodiscard]] double predicted_vertices(const LimitSurface& surface, double chord_tolerance,
+                                        double min_edge_mm = 0.0);
 
 } // namespace subfeed::geometry

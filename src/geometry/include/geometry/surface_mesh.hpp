@@ -51,11 +51,14 @@ struct SurfaceMesh {
 // Per cage face, the tessellation rate that keeps every chord within `chord_tolerance` (mm)
 // of the surface, estimated from second derivatives sampled over the face, and, with
 // `max_edge_mm`, every cell edge about that short or shorter (flat faces too, so that
-// whatever is decided per vertex, such as the tool's reach, is decided that finely);
-// clamped to 2..max_rate (0 for a face without a patch).
+// whatever is decided per vertex, such as the tool's reach, is decided that finely); with
+// `min_edge_mm`, no face cut so finely for its chord that its longest cell edge falls under
+// that (beside a crease the limit surface turns within a hair's breadth, and following it
+// there costs faces x max_rate^2); clamped to 2..max_rate (0 for a face without a patch).
 [[nodiscard]] std::vector<int> rates_for_tolerance(const LimitSurface& surface,
                                                    double chord_tolerance, int max_rate = 128,
-                                                   double max_edge_mm = 0.0);
+                                                   double max_edge_mm = 0.0,
+                                                   double min_edge_mm = 0.0);
 
 // Per cage face, the segments along each of its edges (from its vertex i to i + 1): the
 // larger rate of the two faces that share the edge.

@@ -83,6 +83,14 @@ struct PlanOptions {
   AxisLean lean;
   bool zigzag = true;
   std::optional<double> tolerance; // mm along a pass; default min(h/10, 0.4 um)
+  // mm the planner's mesh keeps to the limit surface: it decides where the slices run and
+  // what is reached, not where a pose is (each is placed on the surface itself); default
+  // min(h/4, 2 um) for parallel passes (rings marched over a coarser mesh scatter their
+  // spacing: the dome's at H 0.03 cut 4 % longer at 7.5 um), the tolerance for rings and
+  // --direction auto (mesh_chord()). No cell is cut shorter than min_cell_mm for its chord
+  // (rates_for_tolerance).
+  std::optional<double> mesh_chord;
+  std::optional<double> min_cell_mm; // default 0.1 mm; 0 for rings and auto (min_cell())
   double feed = 1000.0;            // mm/min
   double plunge_feed = 300.0;      // mm/min
   double clearance = 2.0;          // mm, retract along the tool axis between passes
@@ -120,6 +128,11 @@ struct PlanOptions {
   Fixture fixture;
   bool floor_at_lowest = false; // the floor is the limit surface's lowest point (its mesh's)
 };
+
+// The options' tolerances as planned, mm (their defaults filled in).
+[[nodiscard]] double path_tolerance(const PlanOptions& options);
+[[nodiscard]] double mesh_chord(const PlanOptions& options);
+[[nodiscard]] double min_cell(const PlanOptions& options);
 
 // How the lead and tilt were kept along the passes (axis_lean.hpp).
 struct LeanReport {
@@ -234,21 +247,45 @@ private:
   void set_link_limits(double widest_spacing);
   // Where the tool tip runs: the design surface, or the ball centres for a fixed axis.
   [[nodiscard]] const std::vector<Eigen::Vector3d>& path_points() const;
-  // The triangles in reach (cut_triangles_), and the insertion depth of each.
-  [[nodiscard]] std::vector<std::array<int, 3>> triangles_cut() const;
-  [[nodiscard]] std::vector<unsigned char> depth_cut() const;
+  // The triangles sliced: those in reach (cut_triangles_) and the smooth limits' band.
+  [[nodiscard]] std::vector<int> sliced_triangles() const;
+  // Mesh triangles by index, and the insertion depth of each.
+  [[nodiscard]] std::vector<std::array<int, 3>> triangles_of(const std::vector<int>& ids) const;
+  [[nodiscard]] std::vector<unsigned char> depth_of(const std::vector<int>& ids) const;
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   boundary_passes(const std::vector<std::array<int, 3>>& triangles);
-  // Passes along the exact edge of the band the ball reaches only below the floor (where
-  // its bottom meets the floor less the stock margin), sliced across the triangles between
-  // the band and what is cut; none without a floor.
-  [[nodiscard]] std::vector<std::vector<PassPoint>> floor_limit_passes();
+  // The limits of the tool's reach that vary smoothly over the surface, so that a pass can
+  // end exactly on them: the ball's bottom over the floor (less the stock margin), and the
+  // normal's tilt within the machine's.
+  enum class SmoothLimit { floor, tilt };
+  // Whether the limit leaves some vertex out of reach.
+  [[nodiscard]] bool limited_by(SmoothLimit limit) const;
+  // How far within the limit a ball centred at `centre` touching where the normal is
+  // `normal` stands (mm over the floor's limit; the tilt's cosine over the limit's): < 0
+  // beyond it.
+  [[nodiscard]] double margin(SmoothLimit limit, const Eigen::Vector3d& centre,
+                              const Eigen::Vector3d& normal) const;
+  [[nodiscard]] double vertex_margin(SmoothLimit limit, int v) const;
+  // In reach, or out of it only by a smooth limit.
+  [[nodiscard]] bool smoothly_limited(int v) const;
+  // The triangles with a corner in reach and one out of it only by a smooth limit: sliced
+  // with the rest, their passes ended on the limit.
+  [[nodiscard]] std::vector<int> limit_band() const;
+  // The pieces of the passes within `limit`, each ended on it.
+  [[nodiscard]] std::vector<std::vector<PassPoint>>
+  clipped_at(std::vector<std::vector<PassPoint>> pieces, SmoothLimit limit) const;
+  // The pieces of `pass` within every smooth limit but `except`.
+  [[nodiscard]] std::vector<std::vector<PassPoint>>
+  within_limits(std::vector<PassPoint> pass, std::optional<SmoothLimit> except = {}) const;
+  // Passes along each smooth limit's edge (the passes meet it at an angle and leave a strip
+  // beside it), within the others; none where no limit leaves a vertex out.
+  [[nodiscard]] std::vector<std::vector<PassPoint>> limit_passes();
   // The pieces of `pass` whose every point the ball can be withdrawn from (tool_reach.hpp).
   [[nodiscard]] std::vector<std::vector<PassPoint>> within_reach(std::vector<PassPoint> pass,
                                                                  const TriangleTree& design) const;
   // Every level in order, sliced, cleared, given axes and split where out of reach, into `out`,
   // which it closes at the end; it stops early when the reader closes it.
-  void cut_levels(BoundedQueue<CutLevel>& out, const std::vector<std::array<int, 3>>& cut,
+  void cut_levels(BoundedQueue<CutLevel>& out, const std::vector<int>& sliced,
                   const TriangleTree& design);
   [[nodiscard]] std::vector<std::vector<PassPoint>>
   cut_level(MeshSlicer& slicer, const std::vector<unsigned char>& inserted, double level,
@@ -317,7 +354,8 @@ private:
   double top_z_ = 0.0;                      // the design mesh's highest point, mm
   std::vector<Eigen::Vector3d> path_balls_; // the ball centres of every cleared pass, mm
   Deformation deformation_;
-  double chord_tolerance_ = 0.0;
+  double path_tolerance_ = 0.0; // mm, along a pass (PlanOptions::tolerance)
+  double mesh_chord_ = 0.0;     // mm, the planner's mesh from the limit surface
   double safe_z_ = 0.0;
   double link_distance_ = 0.0;
   double stay_down_ = 0.0; // mm

@@ -26,6 +26,7 @@ struct PlanSettings {
   double clearance = 2.0;
   double stay_down = -1.0; // mm; 0: every link retracts; < 0: the ball's diameter
   double tolerance = 0.0;
+  double mesh_chord = 0.0; // mm; 0: the planner's default
   // mm: the motion gate's deepest allowed cut; 0: the planner's default
   double gate_tolerance = 0.0;
   int level = geometry::min_approx_level;
