@@ -17,7 +17,11 @@ const double same_normal_dot = std::cos(2.0 * 3.14159265358979323846 / 180.0);
 } // namespace
 
 double lowest_z(const SurfaceMesh& mesh) {
-  return std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }).z();
+  return lowest_point(mesh).z();
+}
+
+Eigen::Vector3d lowest_point(const SurfaceMesh& mesh) {
+  return std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); });
 }
 
 Eigen::Matrix3d curvature_matrix(const LimitSample& s) {

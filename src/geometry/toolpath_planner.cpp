@@ -138,8 +138,7 @@ Expected<ToolpathPlanner> ToolpathPlanner::prepare(const Cage& cage, const Limit
       options.gate_tolerance.value_or(std::max(default_gate_tolerance, 2.5 * tolerance));
   Fixture fixture = options.fixture;
   if (options.floor_at_lowest) {
-    fixture.floor_z = exact.lowest_z_under(
-        std::ranges::min(mesh.points, {}, [](const Eigen::Vector3d& p) { return p.z(); }));
+    fixture.floor_z = exact.lowest_z_under(lowest_point(mesh));
   }
   const GateOptions gate_options{options.ball_radius, gate_tolerance, options.whole_tool,
                                  options.tool, fixture};
@@ -386,6 +385,10 @@ void ToolpathPlanner::find_reach(double margin_mm, StageShare& share) {
       cut_triangles_.push_back(t);
     }
   }
+  const auto any = [&](ReachLimit r) { return std::ranges::find(tool_reach_, r) != tool_reach_.end(); };
+  floor_limited_ = options_.fixture.floor_z && any(ReachLimit::floor);
+  tilt_limited_ = any(ReachLimit::tilt);
+  tilt_cos_ = std::cos(reach_angle_deg(reach_options_) * std::numbers::pi / 180.0);
   summary_.out_of_reach = reach_regions(mesh_, tool_reach_);
   summary_.reach_angle_deg = reach_angle_deg(reach_options_);
 }
@@ -884,9 +887,7 @@ ToolpathPlanner::boundary_passes(const std::vector<std::array<int, 3>>& triangle
 }
 
 bool ToolpathPlanner::limited_by(SmoothLimit limit) const {
-  const auto any = [&](ReachLimit r) { return std::ranges::find(tool_reach_, r) != tool_reach_.end(); };
-  return limit == SmoothLimit::floor ? options_.fixture.floor_z && any(ReachLimit::floor)
-                                     : any(ReachLimit::tilt);
+  return limit == SmoothLimit::floor ? floor_limited_ : tilt_limited_;
 }
 
 double ToolpathPlanner::margin(SmoothLimit limit, const Eigen::Vector3d& centre,
@@ -898,7 +899,7 @@ double ToolpathPlanner::margin(SmoothLimit limit, const Eigen::Vector3d& centre,
            (*options_.fixture.floor_z - options_.fixture.stock_margin) +
            0.5 * AssemblyClearance::floor_tolerance_mm;
   }
-  return normal.z() - std::cos(reach_angle_deg(reach_options_) * std::numbers::pi / 180.0);
+  return normal.z() - tilt_cos_;
 }
 
 double ToolpathPlanner::vertex_margin(SmoothLimit limit, int v) const {
@@ -1139,8 +1140,8 @@ void ToolpathPlanner::cut_levels(BoundedQueue<CutLevel>& out, const std::vector<
 
 Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) {
   const StageClock clock(summary_.times[PlanStage::slicing]);
-  // Only the triangles in reach, and those across the floor band's edge, where the passes
-  // end exactly at it (within_limits): a pass ends where the tool's reach does.
+  // Only the triangles in reach, and those across the smooth limits' edges, where the
+  // passes end exactly on them (within_limits): a pass ends where the tool's reach does.
   const auto sliced = sliced_triangles();
   const auto cut = triangles_of(cut_triangles_);
   const TriangleTree design = design_tree();
@@ -1176,8 +1177,8 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
       SUBFEED_TRY(emit_pass(pass, sink, design));
     }
   }
-  // And one along the exact edge of the band round the foot the ball reaches only below the
-  // floor: the cut triangles end up to a mesh cell short of it.
+  // And one along the exact edge of each smooth limit (the floor, the tilt), which the
+  // passes meet at an angle.
   for (auto& whole : limit_passes()) {
     smooth_axes(whole);
     for (const auto& pass : within_reach(std::move(whole), design)) {

@@ -47,6 +47,7 @@ struct SurfaceMesh {
 // The lowest vertex's z, mm: the vertices lie on the limit surface, so this is the part's
 // lowest point within the mesh's chord (the default floor).
 [[nodiscard]] double lowest_z(const SurfaceMesh& mesh);
+[[nodiscard]] Eigen::Vector3d lowest_point(const SurfaceMesh& mesh); // its lowest vertex
 
 // Per cage face, the tessellation rate that keeps every chord within `chord_tolerance` (mm)
 // of the surface, estimated from second derivatives sampled over the face, and, with

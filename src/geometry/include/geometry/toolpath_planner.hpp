@@ -351,6 +351,9 @@ private:
   std::vector<int> cut_triangles_;           // indices of the triangles in reach
   ReachOptions reach_options_;
   bool any_hidden_ = false;                 // some vertex the withdrawing ball cannot leave
+  // What limited_by() answers, set once the reach is known: it is asked for every pass.
+  bool floor_limited_ = false, tilt_limited_ = false;
+  double tilt_cos_ = 0.0; // of the reach angle
   double top_z_ = 0.0;                      // the design mesh's highest point, mm
   std::vector<Eigen::Vector3d> path_balls_; // the ball centres of every cleared pass, mm
   Deformation deformation_;
