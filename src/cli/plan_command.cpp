@@ -72,6 +72,19 @@ Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
                          "(in the cutting length), the rest retract",
                          s.stay_down_links, s.passes - 1, s.stay_down_length));
   }
+  if (s.unclimbable_points > 0) {
+    const auto& at = s.unclimbable_at.front();
+    log.warning(fmt::format("  {} points at {} pass end(s) left uncut: no climb out of them clears "
+                         "the tool (the part overhangs them), the first at ({:.3f}, {:.3f}, {:.3f})",
+                         s.unclimbable_points, s.unclimbable_at.size(), at.x(), at.y(), at.z()));
+  }
+  if (s.refused_moves > 0) {
+    const auto& at = s.refused_at.front();
+    log.warning(fmt::format("  {} move(s) the motion gate refused left uncut, the tool retracting "
+                            "past each (a planner defect: please report it), the first near "
+                            "({:.3f}, {:.3f}, {:.3f})",
+                            s.refused_moves, at.x(), at.y(), at.z()));
+  }
   const std::string refined =
       s.cage_levels > 0
           ? fmt::format(" of the cage subdivided {} time(s), {} faces", s.cage_levels, s.cage_faces)

@@ -120,8 +120,9 @@ std::string time_summary(const geometry::PlanTimes& t, int solves) {
       text += fmt::format(" ({} solves)", solves);
     }
     if (stage == PlanStage::slicing) {
-      text += fmt::format(" (motion gate checks {:.2f} s, handing poses on {:.2f} s)",
-                          t.gate_checks_s, t.sink_s);
+      text += fmt::format(" (motion gate checks {:.2f} s, routing links {:.2f} s, handing poses "
+                          "on {:.2f} s)",
+                          t.gate_checks_s, t.links_s, t.sink_s);
     }
   }
   return text + fmt::format("; {:.2f} s in all", t.total_s());

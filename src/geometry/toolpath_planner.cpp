@@ -3,6 +3,7 @@
 #include "geometry/ball_lift.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/coarse_deformation.hpp"
+#include "geometry/link_clearance.hpp"
 #include "geometry/concentric_field.hpp"
 #include "geometry/mesh_edges.hpp"
 #include "geometry/mesh_slicer.hpp"
@@ -18,6 +19,7 @@
 #include <iterator>
 #include <limits>
 #include <numbers>
+#include <ranges>
 #include <thread>
 #include <unordered_map>
 
@@ -53,7 +55,6 @@ constexpr double ring_preference = 0.02;
 // At 1 %, 3 % more cutting on the dome, and the same worst scallop.
 constexpr double ring_allowance = 0.02;
 // mm a rapid straight across between two passes keeps from the part, beyond the ball.
-constexpr double link_margin_mm = 0.05;
 // Solves measured on the fine mesh after those on the coarse one (deform_on_coarse).
 constexpr int fine_rounds = 8;
 
@@ -496,7 +497,7 @@ Expected<void> ToolpathPlanner::put(const cl::ClPose& pose, const Sink& sink) {
 
 std::optional<std::vector<cl::ClPose>>
 ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
-                                const TriangleTree& design) const {
+                                const TriangleTree& design, const LinkClearance& links) const {
   const Eigen::Vector3d e = tip_of(end), s = tip_of(start);
   const Eigen::Vector3d ae = axis_of(end), as = axis_of(start);
   const double length = (s - e).norm();
@@ -546,70 +547,120 @@ ToolpathPlanner::stay_down_link(const cl::ClPose& end, const cl::ClPose& start,
     }
     previous = next;
   }
+  // The ball rides the surface; the rest of the tool, turning with the axis, must keep the
+  // fixture's clearance over each move as the passes' own moves do.
+  std::vector<Eigen::Vector3d> tips{e}, axes{ae};
+  for (const auto& p : poses) {
+    tips.push_back(tip_of(p));
+    axes.push_back(axis_of(p));
+  }
+  tips.push_back(s);
+  axes.push_back(as);
+  if (!links.feed_clear(tips, axes)) {
+    return std::nullopt;
+  }
   return poses;
 }
 
 Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sink,
-                                        const TriangleTree& design) {
+                                        const TriangleTree& design, const LinkClearance& links) {
   if (last_ && stay_down_ > 0.0 && (tip_of(start) - tip_of(*last_)).norm() <= stay_down_) {
-    if (const auto poses = stay_down_link(*last_, start, design)) {
+    if (const auto poses = [&] {
+          const StageClock clock(summary_.times.links_s);
+          return stay_down_link(*last_, start, design, links);
+        }()) {
       const double before = summary_.cut_length;
-      for (const auto& p : *poses) {
-        SUBFEED_TRY(put(p, sink));
+      // A pose the gate refuses ends the feed there; the link retracts from the last one.
+      Expected<void> gated;
+      const auto passes = [&](const cl::ClPose& p) { return (gated = put(p, sink)).has_value(); };
+      if (std::ranges::all_of(*poses, passes) && passes(start)) {
+        ++summary_.stay_down_links;
+        summary_.stay_down_length += summary_.cut_length - before;
+        return {};
       }
-      SUBFEED_TRY(put(start, sink));
-      ++summary_.stay_down_links;
-      summary_.stay_down_length += summary_.cut_length - before;
-      return {};
+      if (!works_round_refusals()) {
+        return gated;
+      }
+      ++summary_.refused_moves;
+      summary_.refused_at.push_back(tip_of(*last_));
     }
   }
-  const Eigen::Vector3d above_start = tip_of(start) + options_.clearance * axis_of(start);
+  const Eigen::Vector3d start_axis = axis_of(start);
+  const Eigen::Vector3d above_start = tip_of(start) + options_.clearance * start_axis;
+  std::vector<cl::ClPose> route;
   if (last_) {
-    const Eigen::Vector3d above_end = tip_of(*last_) + options_.clearance * axis_of(*last_);
     const Eigen::Vector3d end_axis = axis_of(*last_);
+    const Eigen::Vector3d above_end = tip_of(*last_) + options_.clearance * end_axis;
     SUBFEED_TRY(put(pose_at(above_end, end_axis, cl::MoveKind::retract, options_.feed), sink));
-    // A short hop goes straight across at the clearance, or, where the part rises between
-    // (a knob's crown, the far side of a ridge), over it a clearance above the higher end;
-    // a long one at the safe height: a rapid may not touch the part.
-    const double r = options_.ball_radius;
-    const Eigen::Vector3d start_axis = axis_of(start);
-    const auto blocked = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& from_axis,
-                             const Eigen::Vector3d& to, const Eigen::Vector3d& to_axis) {
-      return exact_->nearest(from + r * from_axis, to + r * to_axis, r + link_margin_mm)
-          .has_value();
-    };
-    const auto at_height = [&](const Eigen::Vector3d& p, double z) {
-      return Eigen::Vector3d(p.x(), p.y(), z);
-    };
-    double z = safe_z_;
-    if ((above_end - above_start).norm() <= link_distance_) {
-      const double hop = std::max(above_end.z(), above_start.z()) + options_.clearance;
-      if (!blocked(above_end, end_axis, above_start, start_axis)) {
-        z = -std::numeric_limits<double>::infinity(); // straight across
-      } else if (hop < safe_z_ &&
-                 !blocked(above_end, end_axis, at_height(above_end, hop), end_axis) &&
-                 !blocked(at_height(above_end, hop), end_axis, at_height(above_start, hop),
-                          start_axis) &&
-                 !blocked(at_height(above_start, hop), start_axis, above_start, start_axis)) {
-        z = hop;
-      }
-    }
-    if (std::isfinite(z)) {
-      SUBFEED_TRY(
-          put(pose_at(at_height(above_end, z), end_axis, cl::MoveKind::rapid, 0.0), sink));
-      SUBFEED_TRY(
-          put(pose_at(at_height(above_start, z), start_axis, cl::MoveKind::rapid, 0.0), sink));
-    }
+    const StageClock clock(summary_.times.links_s);
+    route = rapid_route(links, above_end, end_axis, above_start, start_axis);
   } else {
-    SUBFEED_TRY(put(pose_at({above_start.x(), above_start.y(), safe_z_}, axis_of(start),
-                            cl::MoveKind::rapid, 0.0),
-                    sink));
+    const StageClock clock(summary_.times.links_s);
+    route = descent_from_safe(links, above_start, start_axis);
   }
-  SUBFEED_TRY(put(pose_at(above_start, axis_of(start), cl::MoveKind::rapid, 0.0), sink));
+  for (const auto& p : route) {
+    SUBFEED_TRY(put(p, sink));
+  }
+  SUBFEED_TRY(put(pose_at(above_start, start_axis, cl::MoveKind::rapid, 0.0), sink));
   auto plunge = start;
   plunge.kind = cl::MoveKind::plunge;
   plunge.feed = options_.plunge_feed;
   return put(plunge, sink);
+}
+
+std::vector<cl::ClPose> ToolpathPlanner::rapid_route(const LinkClearance& links,
+                                                     const Eigen::Vector3d& above_end,
+                                                     const Eigen::Vector3d& end_axis,
+                                                     const Eigen::Vector3d& above_start,
+                                                     const Eigen::Vector3d& start_axis) const {
+  const auto joined = [&](const std::vector<Eigen::Vector3d>& up,
+                          const std::vector<Eigen::Vector3d>& down) {
+    std::vector<cl::ClPose> poses;
+    for (const auto& p : up) {
+      poses.push_back(pose_at(p, end_axis, cl::MoveKind::rapid, 0.0));
+    }
+    for (const auto& p : std::views::reverse(down)) {
+      poses.push_back(pose_at(p, start_axis, cl::MoveKind::rapid, 0.0));
+    }
+    return poses;
+  };
+  // A short hop goes straight across at the clearance, or, where the part rises between
+  // (a knob's crown, the far side of a ridge), over it a clearance above the higher end;
+  // a long one at the safe height: a rapid may not touch the part.
+  if ((above_end - above_start).norm() <= link_distance_) {
+    if (links.clear(above_end, end_axis, above_start, start_axis)) {
+      return {};
+    }
+    const double hop = std::max(above_end.z(), above_start.z()) + options_.clearance;
+    if (hop < safe_z_) {
+      const auto up = links.climb(above_end, end_axis, hop);
+      const auto down = links.climb(above_start, start_axis, hop);
+      if (up && down && links.clear(up->back(), end_axis, down->back(), start_axis)) {
+        return joined(*up, *down);
+      }
+    }
+  }
+  return joined(climb_to_safe(links, above_end, end_axis),
+                climb_to_safe(links, above_start, start_axis));
+}
+
+std::vector<Eigen::Vector3d> ToolpathPlanner::climb_to_safe(const LinkClearance& links,
+                                                            const Eigen::Vector3d& above,
+                                                            const Eigen::Vector3d& axis) const {
+  // Every pass end climbs (emit_pass): straight up is only what a buried tool is left with,
+  // and the gate then names what is in the way.
+  return links.climb(above, axis, safe_z_)
+      .value_or(std::vector{Eigen::Vector3d(above.x(), above.y(), safe_z_)});
+}
+
+std::vector<cl::ClPose> ToolpathPlanner::descent_from_safe(const LinkClearance& links,
+                                                           const Eigen::Vector3d& above,
+                                                           const Eigen::Vector3d& axis) const {
+  std::vector<cl::ClPose> poses;
+  for (const auto& p : std::views::reverse(climb_to_safe(links, above, axis))) {
+    poses.push_back(pose_at(p, axis, cl::MoveKind::rapid, 0.0));
+  }
+  return poses;
 }
 
 void ToolpathPlanner::lean_axes(std::vector<PassPoint>& pass, const TriangleTree& design) {
@@ -644,6 +695,48 @@ void ToolpathPlanner::lean_axes(std::vector<PassPoint>& pass, const TriangleTree
   }
 }
 
+namespace {
+
+// From `from` toward `to` (excluded) by `step` (+1 or -1), a point `climbs` holds at, found
+// in a few tries over a long stretch under an overhang (each try is a sweep tens of
+// millimetres long): doubling strides until one holds, then halving back to where the
+// stretch ends; `to` where none holds. Not always the first that holds (the predicate is
+// not monotone): a point that holds, with the one before it failing.
+template <typename Climbs>
+std::size_t first_climbing(std::size_t from, std::size_t to, int step, const Climbs& climbs) {
+  const auto at = [&](std::size_t i, std::size_t n) {
+    return step > 0 ? i + n : i - n;
+  };
+  const std::size_t span = step > 0 ? to - from : from - to;
+  if (span == 0 || climbs(from)) {
+    return span == 0 ? to : from;
+  }
+  std::size_t failed = 0, held = 0; // offsets from `from`
+  for (std::size_t stride = 1;; stride *= 2) {
+    const std::size_t n = std::min(failed + stride, span);
+    if (n == span) {
+      // The far end is `to`, not tried: the last point before it decides.
+      if (span - 1 == failed || !climbs(at(from, span - 1))) {
+        return to;
+      }
+      held = span - 1;
+      break;
+    }
+    if (climbs(at(from, n))) {
+      held = n;
+      break;
+    }
+    failed = n;
+  }
+  while (held - failed > 1) {
+    const std::size_t mid = failed + (held - failed) / 2;
+    (climbs(at(from, mid)) ? held : failed) = mid;
+  }
+  return at(from, held);
+}
+
+} // namespace
+
 Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, const Sink& sink,
                                           const TriangleTree& design) {
   std::vector<PassPoint> leaned;
@@ -658,10 +751,38 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, c
     return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
                    options_.feed);
   };
-  SUBFEED_TRY(link_to(pose(0), sink, design));
+  // Each end of what is cut must be left and reached by a climb that clears: a stretch at
+  // an end the tool cannot climb out of (under an overhang, past the holder's reach) is
+  // left uncut, counted, and the named uncut areas hold it.
+  const LinkClearance& links = *links_;
+  const auto climbs = [&](std::size_t i) {
+    const StageClock clock(summary_.times.links_s);
+    const auto p = pose(i);
+    return links.climb(tip_of(p) + options_.clearance * axis_of(p), axis_of(p), safe_z_)
+        .has_value();
+  };
+  const std::size_t first = first_climbing(0, kept.size(), +1, climbs);
+  if (first == kept.size()) {
+    summary_.unclimbable_points += static_cast<long>(kept.size());
+    summary_.unclimbable_at.push_back(pass[kept.front()].contact);
+    return {};
+  }
+  const std::size_t last = first_climbing(kept.size() - 1, first, -1, climbs) + 1;
+  if (last - first < kept.size()) {
+    summary_.unclimbable_points += static_cast<long>(kept.size() - (last - first));
+    summary_.unclimbable_at.push_back(pass[kept[first > 0 ? 0 : last]].contact);
+  }
+  if (last - first < 2) {
+    return {};
+  }
+  SUBFEED_TRY(link_to(pose(first), sink, design, links));
   auto& steps = summary_.axis_steps;
-  for (std::size_t i = 1; i < kept.size(); ++i) {
-    const auto& a = pass[kept[i - 1]].axis;
+  std::size_t at = kept[first]; // the pass point the tool is at
+  for (std::size_t i = first + 1; i < last; ++i) {
+    if (kept[i] <= at) {
+      continue; // passed in a recovery
+    }
+    const auto& a = pass[at].axis;
     const auto& b = pass[kept[i]].axis;
     const double turn = std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / std::numbers::pi;
     steps.mean_deg += (turn - steps.mean_deg) / static_cast<double>(++steps.steps);
@@ -669,11 +790,66 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, c
       steps.largest_deg = turn;
       steps.largest_at = pass[kept[i]].centre - options_.ball_radius * b;
     }
-    SUBFEED_TRY(put(pose(i), sink));
+    if (auto put_it = put(pose(i), sink); put_it) {
+      at = kept[i];
+      continue;
+    } else if (!works_round_refusals()) {
+      return put_it;
+    }
+    auto reached = recover_move(pass, at, kept[i], kept[last - 1], sink, design);
+    if (!reached) {
+      return std::unexpected(reached.error());
+    }
+    at = *reached;
   }
-  summary_.points += static_cast<long>(kept.size());
+  summary_.points += static_cast<long>(last - first);
   ++summary_.passes;
   return {};
+}
+
+bool ToolpathPlanner::works_round_refusals() const {
+  // Only at the depth the planner places its poses to: a gate asked to hold them finer than
+  // that (--gate-tolerance) refuses the plan, as asked, rather than leave most of it uncut.
+  return gate_.options().tolerance >=
+         std::max(default_gate_tolerance, 2.5 * path_tolerance_) - 1e-12;
+}
+
+Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>& pass,
+                                                    std::size_t from, std::size_t to,
+                                                    std::size_t end, const Sink& sink,
+                                                    const TriangleTree& design) {
+  // The gate refused the move from pass[from] (cut) to pass[to]: the planner's checks missed
+  // something its own surface model does not see. The pass's own points between are cut one
+  // by one; a move refused even between two neighbours is left uncut, the tool retracting
+  // and coming down past it, on a pose that itself keeps the gate's depth (the plunge to it
+  // runs along its axis). The summary counts each (a planner defect, reported).
+  const auto feed_pose = [&](std::size_t k) {
+    const auto& p = pass[k];
+    return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
+                   options_.feed);
+  };
+  const double deepest = options_.ball_radius - 0.5 * gate_.options().tolerance;
+  const auto sound = [&](std::size_t k) { return !exact_->nearest(pass[k].centre, deepest); };
+  for (std::size_t k = from + 1; k <= to; ++k) {
+    if (auto put_it = put(feed_pose(k), sink); put_it) {
+      continue;
+    } else if (!works_round_refusals()) {
+      return std::unexpected(put_it.error());
+    }
+    ++summary_.refused_moves;
+    summary_.refused_at.push_back(pass[k].contact);
+    while (k <= end && !sound(k)) {
+      ++k;
+    }
+    if (k > end) {
+      return end; // the rest of the pass is left uncut
+    }
+    SUBFEED_TRY(link_to(feed_pose(k), sink, design, *links_));
+    if (k >= to) {
+      return k;
+    }
+  }
+  return to;
 }
 
 Expected<void> ToolpathPlanner::emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
@@ -1145,6 +1321,8 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   const auto sliced = sliced_triangles();
   const auto cut = triangles_of(cut_triangles_);
   const TriangleTree design = design_tree();
+  links_ = std::make_unique<LinkClearance>(*exact_, options_.ball_radius, options_.whole_tool,
+                                           options_.tool, options_.fixture, design);
   // Two cores: a thread cuts the levels into passes while this one links them, gates every
   // pose and hands it on, in the same order as one thread would. The cutting side writes only
   // the slicer, the lifted points and the path's balls; this side only the last pose, the
@@ -1188,8 +1366,9 @@ Expected<void> ToolpathPlanner::run(const Sink& sink, const Progress& progress) 
   if (last_) {
     const Eigen::Vector3d above = tip_of(*last_) + options_.clearance * axis_of(*last_);
     SUBFEED_TRY(put(pose_at(above, axis_of(*last_), cl::MoveKind::retract, options_.feed), sink));
-    SUBFEED_TRY(put(
-        pose_at({above.x(), above.y(), safe_z_}, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
+    for (const auto& p : climb_to_safe(*links_, above, axis_of(*last_))) {
+      SUBFEED_TRY(put(pose_at(p, axis_of(*last_), cl::MoveKind::rapid, 0.0), sink));
+    }
   }
   summary_.gate = gate_.report();
   summary_.lifted_points = static_cast<long>(lifted_.size());

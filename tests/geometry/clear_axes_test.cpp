@@ -15,14 +15,15 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 using namespace subfeed;
 
 namespace {
 
 // A 40 x 40 mm plate at z 0 whose middle 3 x 3 cage points sink `depth` mm: a pocket with
-// sloping walls and a rounded floor.
-geometry::Cage pocket(double depth) {
+// sloping walls and a rounded floor; as OBJ text, its vertices numbered from 1.
+std::string pocket_obj(double depth) {
   std::ostringstream obj;
   for (int j = 0; j <= 8; ++j) {
     for (int i = 0; i <= 8; ++i) {
@@ -36,10 +37,35 @@ geometry::Cage pocket(double depth) {
       obj << "f " << a << ' ' << a + 1 << ' ' << a + 10 << ' ' << a + 9 << '\n';
     }
   }
-  std::istringstream in(obj.str());
-  auto cage = geometry::parse_obj(in, "pocket");
+  return obj.str();
+}
+
+geometry::Cage cage_of(const std::string& obj, const char* name) {
+  std::istringstream in(obj);
+  auto cage = geometry::parse_obj(in, name);
   REQUIRE(cage);
   return *cage;
+}
+
+geometry::Cage pocket(double depth) { return cage_of(pocket_obj(depth), "pocket"); }
+
+// The pocket with a second sheet over its -x side: a roof 40 mm deep (y) from x = -20 to 0
+// at z `roof_z`, its edge over the pocket's middle. What lies under the roof's edge the
+// ball reaches, but the tool climbing out straight up could strike it.
+geometry::Cage pocket_under_roof(double depth, double roof_z) {
+  std::ostringstream roof;
+  for (int j = 0; j <= 8; ++j) {
+    for (int i = 0; i <= 4; ++i) {
+      roof << "v " << -20 + 5 * i << ' ' << -20 + 5 * j << ' ' << roof_z << '\n';
+    }
+  }
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const int a = 82 + j * 5 + i;
+      roof << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+    }
+  }
+  return cage_of(pocket_obj(depth) + roof.str(), "roofed pocket");
 }
 
 struct Planned {
@@ -202,4 +228,30 @@ TEST_CASE("walls too steep for a straight tool are cut with the axis turned clea
   INFO("largest axis step between feed poses: " << turned_step << " deg turned clear, "
                                                 << normal_step << " deg along the normals");
   CHECK(turned_step <= normal_step + 2.0); // measured 5.5 against 4.1 deg
+}
+
+TEST_CASE("under a roof the planner's own path is never refused, and the whole tool keeps "
+          "clear on every move",
+          "[parts][slow]") {
+  for (const double roof_z : {8.0, 14.0}) {
+    CAPTURE(roof_z);
+    const auto cage = pocket_under_roof(8.0, roof_z);
+    const auto surface = geometry::LimitSurface::build(cage);
+    REQUIRE(surface);
+    const geometry::ToolAssembly tool{.ball_radius = 1.5,
+                                      .flute_length = 6,
+                                      .shank_diameter = 3,
+                                      .stickout = 30,
+                                      .holder = {{12, 12, 20}}};
+    auto options = pocket_plan(tool);
+    options.scallop = 0.1;
+    const auto planned = plan(cage, *surface, options);
+    // Every move the gate passed (plan() fails on a refusal), none of them after a refusal
+    // the planner worked round: that would be its own defect.
+    CHECK(planned.summary.refused_moves == 0);
+    INFO(planned.summary.unclimbable_points << " points at pass ends left uncut");
+    const auto measured = measure(cage, *surface, tool, planned.summary.fixture, planned.poses);
+    CHECK(measured.to_part >= 0.5 - 0.02);
+    CHECK(measured.under_floor >= -0.002);
+  }
 }

@@ -29,6 +29,7 @@ struct PlanTimes {
   std::array<double, plan_stage_count> stage_s{}; // by PlanStage
   double gate_checks_s = 0.0;                     // of slicing: every pose through the motion gate
   double sink_s = 0.0; // of slicing: handing poses on (writing, posting, streaming)
+  double links_s = 0.0; // of slicing: links routed clear of the part (stay-down, climbs)
 
   [[nodiscard]] double& operator[](PlanStage s) { return stage_s[static_cast<std::size_t>(s)]; }
   [[nodiscard]] double operator[](PlanStage s) const {

@@ -39,6 +39,7 @@
 #include "geometry/lifted_regions.hpp"
 #include "geometry/limit_distance.hpp"
 #include "geometry/limit_surface.hpp"
+#include "geometry/link_clearance.hpp"
 #include "geometry/mesh_slicer.hpp"
 #include "geometry/motion_gate.hpp"
 #include "geometry/pass_insertion.hpp"
@@ -189,6 +190,14 @@ struct PlanSummary {
   double link_length = 0.0;                 // mm of retracts, rapids and plunges
   long stay_down_links = 0;                 // links made by feed along the surface
   double stay_down_length = 0.0;            // mm of them (counted in cut_length)
+  // Pass points left uncut at pass ends no climb out of clears the tool (an overhang above),
+  // and the contacts of the first of each such stretch, mm.
+  long unclimbable_points = 0;
+  std::vector<Eigen::Vector3d> unclimbable_at;
+  // Moves the motion gate refused that the planner left uncut, retracting past each, and
+  // where (a pass's contact, or a link's tip), mm: a planner defect, reported, never hidden.
+  long refused_moves = 0;
+  std::vector<Eigen::Vector3d> refused_at;
   LeanReport lean;                          // with a lead or tilt (once run() has finished)
   AxisSteps axis_steps;                     // along passes (once run() has finished)
   GateReport gate;                          // what the motion gate checked, once run() has finished
@@ -328,12 +337,32 @@ private:
   // Each pass in turn the one that starts (or, zig-zag, ends) nearest the tool.
   [[nodiscard]] Expected<void> emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
                                                   const Sink& sink, const TriangleTree& design);
+  [[nodiscard]] bool works_round_refusals() const;
+  // Cuts on after the gate refused the move from pass[from] to pass[to]; the pass point it
+  // reached (`end`, the last to cut, where it left the rest uncut).
+  [[nodiscard]] Expected<std::size_t> recover_move(const std::vector<PassPoint>& pass,
+                                                   std::size_t from, std::size_t to,
+                                                   std::size_t end, const Sink& sink,
+                                                   const TriangleTree& design);
   [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink,
-                                       const TriangleTree& design);
+                                       const TriangleTree& design, const LinkClearance& links);
+  // A link's rapids after its retract, up to where it comes down to the start's clearance
+  // (none: straight across at the clearance).
+  [[nodiscard]] std::vector<cl::ClPose>
+  rapid_route(const LinkClearance& links, const Eigen::Vector3d& above_end,
+              const Eigen::Vector3d& end_axis, const Eigen::Vector3d& above_start,
+              const Eigen::Vector3d& start_axis) const;
+  [[nodiscard]] std::vector<Eigen::Vector3d> climb_to_safe(const LinkClearance& links,
+                                                           const Eigen::Vector3d& above,
+                                                           const Eigen::Vector3d& axis) const;
+  [[nodiscard]] std::vector<cl::ClPose> descent_from_safe(const LinkClearance& links,
+                                                          const Eigen::Vector3d& above,
+                                                          const Eigen::Vector3d& axis) const;
   // The feed poses between `end` and `start` (both excluded) of a link that stays down, or
   // none where the ball would have to rise more than the link is long.
   [[nodiscard]] std::optional<std::vector<cl::ClPose>>
-  stay_down_link(const cl::ClPose& end, const cl::ClPose& start, const TriangleTree& design) const;
+  stay_down_link(const cl::ClPose& end, const cl::ClPose& start, const TriangleTree& design,
+                 const LinkClearance& links) const;
   [[nodiscard]] Expected<void> put(const cl::ClPose& pose, const Sink& sink);
 
   PlanOptions options_;
@@ -367,6 +396,7 @@ private:
   // The limit surface the poses are placed on (its own, not the gate's: the gate stays the
   // independent check of what is placed).
   std::unique_ptr<LimitDistance> exact_;
+  std::unique_ptr<LinkClearance> links_; // over the design mesh, while run() emits
   std::optional<cl::ClPose> rejected_;
   PlanSummary summary_;
 };
