@@ -72,6 +72,12 @@ Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
                          "(in the cutting length), the rest retract",
                          s.stay_down_links, s.passes - 1, s.stay_down_length));
   }
+  if (s.passes == 0) {
+    // An open sheet's up side is the side its faces wind counter-clockwise seen from: a
+    // sheet modelled the other way round faces the table.
+    log.warning("  nothing to cut: no surface faces the tool within reach; an open sheet whose "
+                "faces wind the other way faces down: plan it with the opposite --up (-y for y)");
+  }
   if (s.unclimbable_points > 0) {
     const auto& at = s.unclimbable_at.front();
     log.warning(fmt::format("  {} points at {} pass end(s) left uncut: no climb out of them clears "

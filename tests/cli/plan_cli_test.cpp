@@ -439,3 +439,36 @@ TEST_CASE("plan leaves a closed part's underside uncut and says how much, and ve
                    "(see subfeed --help)\n");
   CHECK_FALSE(std::filesystem::exists(cl + ".2"));
 }
+
+TEST_CASE("plan of a sheet that faces the table cuts nothing and says to turn it over") {
+  TempDir dir;
+  const auto cage = (dir.path() / "sheet.obj").string();
+  {
+    std::ofstream obj(cage);
+    // A 3 x 3 face sheet at z = 0 wound clockwise seen from +Z: its surface faces -Z.
+    for (int j = 0; j <= 3; ++j) {
+      for (int i = 0; i <= 3; ++i) {
+        obj << "v " << 10 * i << ' ' << 10 * j << " 0\n";
+      }
+    }
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        const int a = 1 + 4 * j + i;
+        obj << "f " << a << ' ' << a + 4 << ' ' << a + 5 << ' ' << a + 1 << '\n';
+      }
+    }
+  }
+  const auto cl = (dir.path() / "sheet.cl").string();
+  const auto down = run_process(
+      {bin, "plan", cage, "--tool", "ball:3", "--scallop", "0.05", "--tolerance", "0.002", "-o", cl});
+  REQUIRE(down.exit_code == 0);
+  CHECK(has_line(down.err, "subfeed: warning:   nothing to cut: no surface faces the tool within "
+                           "reach; an open sheet whose faces wind the other way faces down: plan "
+                           "it with the opposite --up (-y for y)"));
+  // Turned over, it is cut, and no such warning is given.
+  const auto up = run_process({bin, "plan", cage, "--up", "-z", "--tool", "ball:3", "--scallop",
+                               "0.05", "--tolerance", "0.002", "-o", cl});
+  REQUIRE(up.exit_code == 0);
+  CHECK(up.err.find("nothing to cut") == std::string::npos);
+  CHECK(std::filesystem::file_size(cl) > 1000);
+}
