@@ -35,7 +35,9 @@ const CageSetup cages[] = {
     {"bishop", {"--scale", "100"}, "ball:6", "0.01"},
     {"rook", {"--scale", "100"}, "ball:4", "0.02"},
     {"torus_creases1", {"--up", "y", "--scale", "40"}, "ball:6", "0.01"},
-    {"xord_interior", {"--up", "y", "--scale", "30"}, "ball:6", "0.01"},
+    // The folder's README says --up y, but the sheet's normals then all face the table
+    // (nothing to cut, as plan says): its top faces -y.
+    {"xord_interior", {"--up", "-y", "--scale", "30"}, "ball:6", "0.01"},
     {"cubes_semisharp", {"--scale", "40"}, "ball:6", "0.01"},
     {"dart_edgecorner", {"--scale", "20"}, "ball:6", "0.01"},
     {"tent_creases1", {"--scale", "25"}, "ball:6", "0.01"},
@@ -112,10 +114,16 @@ int main() {
       status = 1;
       continue;
     }
-    std::printf("  %s: mesh %s vertices; cutting %s mm, links %s mm; slowest stage %s\n", c.name,
+    std::printf("  %s: %s; mesh %s vertices; %s passes, cutting %s mm, links %s mm; slowest "
+                "stage %s; gate refusals worked round: %s\n",
+                c.name, captured(run.out, R"(mm \(([a-z ]+)\)\n)").c_str(),
                 captured(run.out, R"(mesh ([0-9]+) vertices)").c_str(),
+                captured(run.out, R"(: ([0-9]+) passes)").c_str(),
                 captured(run.out, R"(cutting ([0-9.]+) mm)").c_str(),
-                captured(run.out, R"(links ([0-9.]+) mm)").c_str(), slowest_stage(run.out).c_str());
+                captured(run.out, R"(links ([0-9.]+) mm)").c_str(), slowest_stage(run.out).c_str(),
+                run.err.find("motion gate refused") == std::string::npos
+                    ? "none"
+                    : captured(run.err, R"(([0-9]+) move\(s\) the motion gate refused)").c_str());
   }
   fs::remove_all(dir);
   return status;

@@ -90,6 +90,7 @@ Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
                             "past each (a planner defect: please report it), the first near "
                             "({:.3f}, {:.3f}, {:.3f})",
                             s.refused_moves, at.x(), at.y(), at.z()));
+    log.warning(fmt::format("    the first: {}", s.first_refusal));
   }
   const std::string refined =
       s.cage_levels > 0
@@ -137,6 +138,16 @@ Expected<void> run_plan(PlanCommandOptions o, Logger& log) {
                          "parallel passes",
                          s.rings() ? "concentric rings cut" : "parallel passes kept", s.ring_price,
                          s.parallel_price));
+  }
+  if (!s.rings() && s.parallel_price > 0.0 && s.ideal_length > 0.0) {
+    log.info(fmt::format("  predicted cutting {:.0f} mm, {:.2f} times the ideal {:.0f} mm",
+                         s.parallel_price, s.parallel_price / s.ideal_length, s.ideal_length));
+  }
+  if (s.rings_instead) {
+    log.info(fmt::format("  concentric rings instead of parallel passes: predicted {:.0f} mm "
+                         "against {:.0f} mm, the ideal {:.0f} mm (--direction x keeps the "
+                         "parallel passes)",
+                         s.ring_price, s.parallel_price, s.ideal_length));
   }
   if (options.whole_tool) {
     log.info(tool_summary(options.tool, s));

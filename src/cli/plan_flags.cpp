@@ -56,7 +56,9 @@ void add_plan_flags(CLI::App& cmd, job::PlanSettings& o, bool required) {
   cmd.add_option(
       "--direction", o.direction,
       "Feed direction: x, y, degrees from X, concentric (rings about the highest point) or auto "
-      "(the shortest predicted path, rings included)");
+      "(the shortest predicted path, rings included); default x, but rings where parallel "
+      "passes would cut over twice the ideal length and rings are shorter (walls facing the "
+      "planes: a body of revolution, a box)");
   cmd.add_flag("--baseline", o.baseline, "Constant-interval iso-planar passes for comparison");
   cmd.add_option("--axis-radius", o.axis_radius,
                  "Tool axis averaging radius zeta, mm (default: ball radius)")

@@ -2,6 +2,7 @@
 
 #include "geometry/step_over.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -70,6 +71,25 @@ std::vector<double> cl_spacing_across(const SurfaceMesh& mesh, double r, double 
     out[i] = std::abs(rho) < flat_radius ? cl_step(r, h, rho) : flat;
   }
   return out;
+}
+
+double ideal_cutting_length(const std::vector<Eigen::Vector3d>& cl_points,
+                            const std::vector<std::array<int, 3>>& triangles,
+                            const PassIntervals& intervals) {
+  double length = 0.0;
+  for (const auto& t : triangles) {
+    const auto a = static_cast<std::size_t>(t[0]), b = static_cast<std::size_t>(t[1]),
+               c = static_cast<std::size_t>(t[2]);
+    if (!intervals.cuts(a) || !intervals.cuts(b) || !intervals.cuts(c)) {
+      continue;
+    }
+    const double area =
+        0.5 * (cl_points[b] - cl_points[a]).cross(cl_points[c] - cl_points[a]).norm();
+    const double spacing =
+        (intervals.cl_spacing[a] + intervals.cl_spacing[b] + intervals.cl_spacing[c]) / 3.0;
+    length += spacing > 0.0 ? area / spacing : 0.0;
+  }
+  return length;
 }
 
 } // namespace subfeed::geometry

@@ -49,6 +49,10 @@ constexpr int ring_rounds = 3;
 // Rings replace parallel passes only where predicted shorter by more than this fraction:
 // both predictions leave out the links of inserted pieces, the rings' more of them.
 constexpr double ring_preference = 0.02;
+// Parallel passes predicted to cut more than this many times the ideal length fight the
+// part (rings_where_parallel_fails): the sample parts' are predicted at 0.98 to 1.34 times
+// it, OpenSubdiv's regression cages (walls facing the planes) at 15 to 100 times.
+constexpr double parallel_excess = 2.0;
 // The front's arrival times are first order: measured ring spacings scatter by 1 to 2 %
 // about the need where the meter finds no scallop over 1.02 H (the dome), so rings take
 // passes inserted only past 2 % (the scallop there may exceed the target by about 4 %).
@@ -80,7 +84,11 @@ bool rings_possible(const PlanOptions& options) {
 double mesh_chord(const PlanOptions& options) {
   // Rings bend across the mesh where parallel passes run nearly straight: sliced over
   // coarse cells they turn at every cell edge (the tool's tilt from their feed swung 2 to 3
-  // degrees at 2 um on the lifted dome), so they keep the fine chord.
+  // degrees at 2 um on the lifted dome), so they keep the fine chord. Rings taken where
+  // parallel passes fight the part (rings_where_parallel_fails) are sliced over the mesh
+  // cut for those: on the dome that holds the scallop (1.0001 H) and the axis's turns
+  // (1.43 degrees at most), but a lead of 15 degrees kept within 1.5 degrees of asked at
+  // 90 % of the poses instead of over 95 %.
   if (rings_possible(options)) {
     return options.mesh_chord.value_or(path_tolerance(options));
   }
@@ -289,12 +297,16 @@ Expected<void> ToolpathPlanner::deform(const PassIntervals& intervals, Direction
                                       o.refine_iterations, insertion_margin, o.spacing_allowance,
                                       progress, need));
   }
-  if (o.choose_direction) {
+  summary_.ideal_length = ideal_cutting_length(cl_points_, m.triangles, intervals);
+  summary_.parallel_price = deformation_.insertion.predicted_length;
+  const bool failing = o.rings_where_parallel_fails &&
+                       summary_.parallel_price > parallel_excess * summary_.ideal_length;
+  if (o.choose_direction || failing) {
     auto candidate = rings();
     summary_.ring_price = candidate.insertion.predicted_length;
-    summary_.parallel_price = deformation_.insertion.predicted_length;
     if (summary_.ring_price < (1.0 - ring_preference) * summary_.parallel_price) {
       deformation_ = std::move(candidate);
+      summary_.rings_instead = failing;
     }
   }
   return {};
@@ -581,8 +593,7 @@ Expected<void> ToolpathPlanner::link_to(const cl::ClPose& start, const Sink& sin
       if (!works_round_refusals()) {
         return gated;
       }
-      ++summary_.refused_moves;
-      summary_.refused_at.push_back(tip_of(*last_));
+      note_refusal(gated.error(), tip_of(*last_));
     }
   }
   const Eigen::Vector3d start_axis = axis_of(start);
@@ -790,12 +801,16 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, c
       steps.largest_deg = turn;
       steps.largest_at = pass[kept[i]].centre - options_.ball_radius * b;
     }
-    if (auto put_it = put(pose(i), sink); put_it) {
-      at = kept[i];
-      continue;
-    } else if (!works_round_refusals()) {
-      return put_it;
+    if (at == kept[i - 1]) {
+      if (auto put_it = put(pose(i), sink); put_it) {
+        at = kept[i];
+        continue;
+      } else if (!works_round_refusals()) {
+        return put_it;
+      }
     }
+    // Refused, or on from where a recovery left the tool, between two kept points: the
+    // reduced move from there was never checked, so the pass's own points are cut one by one.
     auto reached = recover_move(pass, at, kept[i], kept[last - 1], sink, design);
     if (!reached) {
       return std::unexpected(reached.error());
@@ -805,6 +820,13 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, c
   summary_.points += static_cast<long>(last - first);
   ++summary_.passes;
   return {};
+}
+
+void ToolpathPlanner::note_refusal(const Error& refusal, const Eigen::Vector3d& near) {
+  if (summary_.refused_moves++ == 0) {
+    summary_.first_refusal = refusal.message;
+  }
+  summary_.refused_at.push_back(near);
 }
 
 bool ToolpathPlanner::works_round_refusals() const {
@@ -818,8 +840,9 @@ Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>
                                                     std::size_t from, std::size_t to,
                                                     std::size_t end, const Sink& sink,
                                                     const TriangleTree& design) {
-  // The gate refused the move from pass[from] (cut) to pass[to]: the planner's checks missed
-  // something its own surface model does not see. The pass's own points between are cut one
+  // The gate refused the move from pass[from] (cut) to pass[to] (the planner's checks missed
+  // something its own surface model does not see), or that move, from where an earlier
+  // recovery left the tool, was never checked. The pass's own points between are cut one
   // by one; a move refused even between two neighbours is left uncut, the tool retracting
   // and coming down past it, on a pose that itself keeps the gate's depth (the plunge to it
   // runs along its axis). The summary counts each (a planner defect, reported).
@@ -831,13 +854,14 @@ Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>
   const double deepest = options_.ball_radius - 0.5 * gate_.options().tolerance;
   const auto sound = [&](std::size_t k) { return !exact_->nearest(pass[k].centre, deepest); };
   for (std::size_t k = from + 1; k <= to; ++k) {
-    if (auto put_it = put(feed_pose(k), sink); put_it) {
+    auto put_it = put(feed_pose(k), sink);
+    if (put_it) {
       continue;
-    } else if (!works_round_refusals()) {
+    }
+    if (!works_round_refusals()) {
       return std::unexpected(put_it.error());
     }
-    ++summary_.refused_moves;
-    summary_.refused_at.push_back(pass[k].contact);
+    note_refusal(put_it.error(), pass[k].contact);
     while (k <= end && !sound(k)) {
       ++k;
     }

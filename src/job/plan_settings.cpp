@@ -35,7 +35,9 @@ Expected<geometry::PlanOptions> plan_options_from(const PlanSettings& o) {
   options.ball_radius = radius;
   options.scallop = o.scallop;
   options.choose_direction = o.direction == "auto";
-  if (o.direction == "concentric") {
+  if (o.direction.empty()) {
+    options.rings_where_parallel_fails = true; // along x, unless that fights the part
+  } else if (o.direction == "concentric") {
     options.pattern = geometry::PassPattern::concentric;
   } else if (!options.choose_direction) {
     SUBFEED_TRY_ASSIGN(options.direction_deg, direction_deg(o.direction));

@@ -7,6 +7,7 @@
 #include "geometry/obj_reader.hpp"
 #include "geometry/path_verifier.hpp"
 #include "geometry/toolpath_planner.hpp"
+#include "support/grid_cage.hpp"
 #include "support/plan_to_file.hpp"
 #include "support/temp_dir.hpp"
 
@@ -258,4 +259,67 @@ TEST_CASE("sample part seat.obj: --direction auto priced on a coarse mesh", "[pa
   CHECK(d.max_scallop <= 1.05 * 0.01);
   CHECK(d.max_gouge <= 2.5 * *plan.tolerance);
   CHECK(coarse.plan.cut_length <= 1.08 * fine.cut_length);
+}
+
+// Parallel planes meet a box's walls edge-on where the walls face along the slicing normal:
+// there the planes must crowd to a twentieth of the step, and the passes cut many times
+// what the part needs. The default plan then takes rings about the top, which go round the
+// walls at the need, and says so; where the planes fit the part (the sample parts, 1.0 to
+// 1.4 times the ideal) it keeps them. A family of boxes (the cube cage's rounded limit,
+// stretched), each measured by the meter.
+namespace {
+
+geometry::Cage box_cage(double side, double height) {
+  auto cage = testing::cube_cage();
+  for (auto& p : cage.positions) {
+    p = {p.x() * side, p.y() * side, (p.z() + 0.5) * height};
+  }
+  return cage;
+}
+
+} // namespace
+
+TEST_CASE("the default plan cuts rings round a box whose walls face the planes, at the need",
+          "[parts][slow]") {
+  for (const auto& [side, height] : {std::pair{20.0, 20.0}, std::pair{16.0, 36.0}}) {
+    const auto cage = box_cage(side, height);
+    auto surface = geometry::LimitSurface::build(cage);
+    REQUIRE(surface);
+    TempDir dir;
+    auto plan = part_plan(3.0, 0.03);
+    plan.rings_where_parallel_fails = true;
+    const auto chosen = testing::plan_and_verify(cage, *surface, plan, part_meter(3.0, 0.03, 0.25),
+                                                 dir.path() / "box.cl");
+    const auto& s = chosen.plan;
+    const auto& d = chosen.report;
+    INFO(side << " x " << height << ": parallel " << s.parallel_price << " rings " << s.ring_price
+              << " ideal " << s.ideal_length << " meter's L* " << d.ideal_length << " cut "
+              << d.cutting_length << " scallop " << d.max_scallop << " gouge " << d.max_gouge);
+    CHECK(s.rings_instead);
+    CHECK(s.rings());
+    CHECK(s.parallel_price > 2.0 * s.ideal_length);
+    // The planner's ideal is over the CL surface, the meter's over the part: on a convex
+    // part the offset surface is larger by up to (1 + r / R) across and along.
+    CHECK(s.ideal_length > d.ideal_length);
+    CHECK(s.ideal_length < 1.5 * d.ideal_length);
+    CHECK(d.cutting_length < 1.5 * d.ideal_length);
+    CHECK(d.max_scallop <= 1.05 * 0.03);
+    CHECK(d.max_scallop >= 0.5 * 0.03);
+    CHECK(d.max_gouge <= 1e-3);
+    // Asked for parallel passes, it cuts them.
+    plan.rings_where_parallel_fails = false;
+    CHECK_FALSE(testing::plan_only(cage, *surface, plan).rings());
+  }
+}
+
+TEST_CASE("the default plan keeps parallel passes on the sample parts", "[parts][slow]") {
+  for (const auto* name : {"dome.obj", "bowl.obj", "saddle.obj", "ridge.obj"}) {
+    const auto [cage, surface] = load_part(name);
+    auto plan = part_plan(3.0, 0.01);
+    plan.rings_where_parallel_fails = true;
+    const auto s = testing::plan_only(cage, surface, plan);
+    INFO(name << ": parallel " << s.parallel_price << " ideal " << s.ideal_length);
+    CHECK_FALSE(s.rings());
+    CHECK(s.parallel_price < 2.0 * s.ideal_length);
+  }
 }

@@ -15,9 +15,11 @@
 #include "support/temp_dir.hpp"
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <numbers>
 
 using namespace subfeed;
@@ -371,4 +373,38 @@ TEST_CASE("coarse stay-down links: neighbouring passes reached by feed along the
         Approx(retracting.plan.cut_length + staying.plan.stay_down_length).epsilon(1e-9));
   CHECK(staying.report.max_gouge <= 2.5 * coarse_tolerance);
   CHECK(staying.report.max_scallop <= 1.05 * 0.03);
+}
+
+TEST_CASE("the ideal cutting length of a flat sheet is its area over the spacing, cut part only",
+          "[unit]") {
+  // An n x n grid of squares of side g, two triangles each; vertices with x > the middle
+  // out of reach.
+  for (const auto& [n, g, w] : {std::tuple{4, 1.0, 0.5}, std::tuple{10, 2.5, 0.3}}) {
+    std::vector<Eigen::Vector3d> points;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        points.emplace_back(i * g, j * g, 7.0);
+      }
+    }
+    std::vector<std::array<int, 3>> triangles;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const int a = j * (n + 1) + i;
+        triangles.push_back({a, a + 1, a + n + 2});
+        triangles.push_back({a, a + n + 2, a + n + 1});
+      }
+    }
+    geometry::PassIntervals intervals;
+    intervals.cl_spacing.assign(points.size(), w);
+    intervals.reachable.assign(points.size(), 1);
+    const double side = n * g;
+    CHECK(geometry::ideal_cutting_length(points, triangles, intervals) ==
+          Approx(side * side / w));
+    intervals.in_reach.assign(points.size(), 1);
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      intervals.in_reach[v] = points[v].x() <= 0.5 * side ? 1 : 0;
+    }
+    CHECK(geometry::ideal_cutting_length(points, triangles, intervals) ==
+          Approx(0.5 * side * side / w));
+  }
 }

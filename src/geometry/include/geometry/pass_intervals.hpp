@@ -7,6 +7,7 @@
 #include "geometry/surface_mesh.hpp"
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 namespace subfeed::geometry {
@@ -44,5 +45,12 @@ struct PassIntervals {
                                                     double scallop,
                                                     const std::vector<Eigen::Vector3d>& across,
                                                     const std::vector<double>& fallback);
+
+// mm of cutting a pattern that met every vertex's need exactly would take: the CL surface's
+// cut area over the spacing its vertices need (a lower bound no pattern of passes beats by
+// much, whatever their shape), to tell a pattern that fights the part from one that fits.
+[[nodiscard]] double ideal_cutting_length(const std::vector<Eigen::Vector3d>& cl_points,
+                                          const std::vector<std::array<int, 3>>& triangles,
+                                          const PassIntervals& intervals);
 
 } // namespace subfeed::geometry

@@ -56,6 +56,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 
 namespace subfeed::geometry {
 
@@ -74,6 +75,10 @@ struct PlanOptions {
   // Instead of direction_deg, the direction whose path is predicted shortest
   // (feed_direction.hpp); --baseline then cuts that direction too.
   bool choose_direction = false;
+  // Parallel passes at direction_deg, but rings where those are predicted to cut more than
+  // parallel_excess times the ideal length (planes meeting walls edge-on: a body of
+  // revolution, a box) and rings are predicted shorter.
+  bool rings_where_parallel_fails = false;
   bool baseline = false;
   std::optional<double> axis_radius; // zeta, mm; default: the ball radius
   bool fixed_axis = false;           // vertical tool (three axes)
@@ -158,8 +163,10 @@ struct PlanSummary {
   double direction_deg = 0.0; // the feed direction cut
   std::vector<DirectionPrice> direction_prices; // the candidates, when it was chosen
   std::vector<Eigen::Vector3d> ring_centres;    // of concentric passes (one per piece), mm
-  double ring_price = 0.0;     // predicted cutting of rings, mm, when set against the
-  double parallel_price = 0.0; // chosen direction's passes (choose_direction)
+  double ring_price = 0.0;     // predicted cutting of rings when set against parallel, mm
+  double parallel_price = 0.0; // the parallel passes' predicted cutting, mm
+  double ideal_length = 0.0;   // mm, what passes meeting the need exactly would cut
+  bool rings_instead = false;  // rings_where_parallel_fails took rings
   int rate = 0;
   int cage_levels = 0; // subdivision steps taken before meshing
   long cage_faces = 0; // faces of the cage meshed
@@ -198,6 +205,7 @@ struct PlanSummary {
   // where (a pass's contact, or a link's tip), mm: a planner defect, reported, never hidden.
   long refused_moves = 0;
   std::vector<Eigen::Vector3d> refused_at;
+  std::string first_refusal; // the gate's words for the first of them
   LeanReport lean;                          // with a lead or tilt (once run() has finished)
   AxisSteps axis_steps;                     // along passes (once run() has finished)
   GateReport gate;                          // what the motion gate checked, once run() has finished
@@ -338,6 +346,8 @@ private:
   [[nodiscard]] Expected<void> emit_nearest_first(std::vector<std::vector<PassPoint>> passes,
                                                   const Sink& sink, const TriangleTree& design);
   [[nodiscard]] bool works_round_refusals() const;
+  // Counts a move the gate refused that the planner worked round, keeping the first words.
+  void note_refusal(const Error& refusal, const Eigen::Vector3d& near);
   // Cuts on after the gate refused the move from pass[from] to pass[to]; the pass point it
   // reached (`end`, the last to cut, where it left the rest uncut).
   [[nodiscard]] Expected<std::size_t> recover_move(const std::vector<PassPoint>& pass,

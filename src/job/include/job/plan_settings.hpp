@@ -16,7 +16,7 @@ struct PlanSettings {
   // Where a tool's name is looked up. Not recorded: a job keeps the sizes it resolved to.
   std::string tool_table = "configs/tools.toml";
   double scallop = 0.0;
-  std::string direction = "x";
+  std::string direction; // empty: along x, or rings where parallel passes fight the part
   bool baseline = false;
   double axis_radius = 0.0;
   std::string axis = "normal";
