@@ -394,6 +394,26 @@ double LimitDistance::lift(const Eigen::Vector3d& centre, const Eigen::Vector3d&
       centre, dir, radius, lift_slack_mm);
 }
 
+std::optional<Eigen::Vector3d> LimitDistance::pushed_clear(const Eigen::Vector3d& centre,
+                                                          double radius) const {
+  // Between two walls nearer than the ball's diameter the pushes alternate: a few rounds
+  // settle every ball that fits.
+  constexpr int rounds = 4;
+  Eigen::Vector3d c = centre;
+  for (int round = 0; round < rounds; ++round) {
+    const auto near = nearest(c, radius);
+    if (!near) {
+      return c;
+    }
+    const Eigen::Vector3d out = c - near->on_surface;
+    if (out.norm() <= 0.0) {
+      return std::nullopt;
+    }
+    c = near->on_surface + (radius + lift_slack_mm) * out.normalized();
+  }
+  return nearest(c, radius) ? std::nullopt : std::optional{c};
+}
+
 double LimitDistance::lowest_z_under(const Eigen::Vector3d& start) const {
   // The foot of a point depth d below a bottom of curvature k sits 1 / (1 + d k) of the way
   // from the lowest point to straight above the query: two rounds from a metre down leave it

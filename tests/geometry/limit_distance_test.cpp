@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 using namespace subfeed;
@@ -219,6 +220,67 @@ TEST_CASE("a ball lifted clear of the limit surface touches it", "[unit]") {
       // Where the surface bends less than the ball, the ball touches at its own contact.
       if (std::abs(a) < 0.5 / r && std::abs(b) < 0.5 / r) {
         CHECK(std::abs(lift - 0.5 * r) < 1e-6);
+      }
+    }
+  }
+}
+
+// The planner sets a sunk ball on the surface by the shorter of two ways: along its
+// point's normal, or out from the surface's nearest point. Beside a crease the normal is
+// one side's and the ball touches the edge: the push is the short way, its answer exact on
+// a cube whose edges are all sharp (its limit surface is the cube itself).
+TEST_CASE("a ball pushed out from the limit surface touches it, the short way round a crease",
+          "[unit]") {
+  auto cage = subfeed::testing::cube_cage();
+  for (auto& p : cage.positions) {
+    p *= 20.0; // the cube [-10, 10]^3
+  }
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const auto loop = cage.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int u = loop[i], v = loop[(i + 1) % loop.size()];
+      if (u < v) {
+        cage.creases.push_back({u, v, 10.0, 0});
+      }
+    }
+  }
+  const auto oracle = geometry::LimitDistance::build(cage);
+  REQUIRE(oracle);
+  for (const double r : {1.0, 3.0}) {
+    for (const double y : {-6.0, 0.0, 4.5}) {
+      // Past the edge x = z = 10 at angles from its top face round to its side.
+      for (const double deg : {15.0, 40.0, 45.0, 60.0, 80.0}) {
+        const double a = deg * std::numbers::pi / 180.0;
+        const Eigen::Vector3d out(std::sin(a), 0.0, std::cos(a)); // from the edge
+        const Eigen::Vector3d edge(10.0, y, 10.0);
+        const Eigen::Vector3d sunk = edge + 0.4 * r * out;
+        INFO("r " << r << " y " << y << " at " << deg << " deg from the top face");
+        const auto pushed = oracle->pushed_clear(sunk, r);
+        REQUIRE(pushed);
+        CHECK((*pushed - (edge + r * out)).norm() < 1e-6);
+        CHECK_FALSE(oracle->nearest(*pushed, r - 1e-8));
+        // Straight up the top face's normal is the long way: it must clear the edge too.
+        const double up = oracle->lift(sunk, Eigen::Vector3d::UnitZ(), r);
+        CHECK((*pushed - sunk).norm() < up);
+      }
+    }
+    // Over the top face, away from the edge, the push is the lift along its normal.
+    const Eigen::Vector3d sunk(2.0, -3.0, 10.0 + 0.3 * r);
+    const auto pushed = oracle->pushed_clear(sunk, r);
+    REQUIRE(pushed);
+    CHECK((*pushed - Eigen::Vector3d(2.0, -3.0, 10.0 + r)).norm() < 1e-6);
+  }
+  // A ball wider than the hollow it is pushed in settles nowhere or somewhere clear: the
+  // push never answers with a ball that cuts in.
+  for (const double a : {0.2, 1.0, 3.0}) {
+    const auto bowl = subfeed::testing::grid_cage(9, 5.0, a, a);
+    const auto deep = geometry::LimitDistance::build(bowl);
+    REQUIRE(deep);
+    for (const double x : {0.0, 0.3, 1.1}) {
+      INFO("bowl z = " << a << " (x^2 + y^2), ball at x " << x);
+      const Eigen::Vector3d sunk(x, 0.2 * x, a * x * x + 0.5);
+      if (const auto pushed = deep->pushed_clear(sunk, 3.0)) {
+        CHECK_FALSE(deep->nearest(*pushed, 3.0 - 1e-8));
       }
     }
   }

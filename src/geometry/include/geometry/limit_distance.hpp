@@ -67,6 +67,13 @@ public:
   [[nodiscard]] double lift(const Eigen::Vector3d& centre, const Eigen::Vector3d& dir,
                             double radius) const;
 
+  // `centre` moved out from the surface's nearest point until no point of the surface lies
+  // nearer than `radius`: the shortest way clear where the surface is smooth (along its
+  // normal) and round a crease (out from the edge). None where that does not settle, as in
+  // a gap narrower than the ball.
+  [[nodiscard]] std::optional<Eigen::Vector3d> pushed_clear(const Eigen::Vector3d& centre,
+                                                            double radius) const;
+
   // The z of the surface's lowest point in the hollow under `start` (mm), found as the foot
   // of points far below: a mesh's lowest vertex, made exact.
   [[nodiscard]] double lowest_z_under(const Eigen::Vector3d& start) const;

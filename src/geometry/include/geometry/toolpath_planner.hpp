@@ -313,9 +313,10 @@ private:
   // inside the ball, mm (a vertex's clear ball).
   [[nodiscard]] double mesh_lift(const TriangleTree& design, const Eigen::Vector3d& centre,
                                  const Eigen::Vector3d& dir) const;
-  // A pass point's ball set on the limit surface itself: lifted along its normal until it
-  // clears the surface, or, where it floats off it (a chord of the CL mesh over a hollow),
-  // lowered onto it. Returns the lift, mm (0 where it was lowered or already touching).
+  // A pass point's ball set on the limit surface itself: moved the shorter way clear of the
+  // surface (out from its nearest point, or along its normal), or, where it floats off it
+  // (a chord of the CL mesh over a hollow), lowered onto it. Returns how far it moved up,
+  // mm (0 where it was lowered or already touching).
   double place_on_surface(PassPoint& p) const;
   // Clears every point of the pass on the limit surface and inserts cleared midpoints where
   // the straight sweep between two would cut in.
@@ -354,6 +355,10 @@ private:
                                                    std::size_t from, std::size_t to,
                                                    std::size_t end, const Sink& sink,
                                                    const TriangleTree& design);
+  // The feed move from pass point `a` (where the tool is) to `b`, halved up to `depth` times
+  // where the gate refuses it; a refusal left standing returns its error with rejected() set.
+  [[nodiscard]] Expected<void> put_split(const PassPoint& a, const PassPoint& b, int depth,
+                                         const Sink& sink);
   [[nodiscard]] Expected<void> link_to(const cl::ClPose& start, const Sink& sink,
                                        const TriangleTree& design, const LinkClearance& links);
   // A link's rapids after its retract, up to where it comes down to the start's clearance
