@@ -1271,7 +1271,15 @@ std::vector<std::vector<ToolpathPlanner::PassPoint>> ToolpathPlanner::limit_pass
 std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& design) const {
   std::vector<std::vector<PassPoint>> pieces;
-  if (!any_hidden_ && !options_.whole_tool) {
+  const double r = options_.ball_radius;
+  // A ball set on the surface more than a radius off its own contact has not ridden over
+  // a hollow but been thrown out of one: lifted along a wall's normal out of a gap between
+  // two of the rook's merlons it landed 10 mm away, and the moves to it cut 1-3 um where
+  // the pass runs. It ends the pass as a point out of reach does.
+  const auto placed_near = [&](const PassPoint& p) {
+    return (p.centre - p.contact).norm() <= 2.0 * r;
+  };
+  if (!any_hidden_ && !options_.whole_tool && std::ranges::all_of(pass, placed_near)) {
     pieces.push_back(std::move(pass));
     return pieces;
   }
@@ -1283,7 +1291,6 @@ ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& d
   if (options_.whole_tool) {
     clearance.emplace(options_.tool, options_.fixture, design);
   }
-  const double r = options_.ball_radius;
   std::vector<PassPoint> piece;
   const auto close = [&] {
     if (piece.size() >= 2) {
@@ -1310,7 +1317,8 @@ ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& d
     return true;
   };
   for (auto& p : pass) {
-    if ((!any_hidden_ || withdraws(design, p.centre, p.axis, top_z_, reach_options_)) &&
+    if (placed_near(p) &&
+        (!any_hidden_ || withdraws(design, p.centre, p.axis, top_z_, reach_options_)) &&
         tool_clear(p.centre, p.axis)) {
       if (!piece.empty() && !move_clear(piece.back(), p)) {
         close();
