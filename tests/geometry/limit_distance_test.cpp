@@ -17,6 +17,19 @@ using namespace subfeed;
 
 namespace {
 
+// Every edge of `cage` creased at `sharpness` (10: infinitely sharp).
+void crease_every_edge(geometry::Cage& cage, double sharpness) {
+  for (int f = 0; f < cage.face_count(); ++f) {
+    const auto loop = cage.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int u = loop[i], v = loop[(i + 1) % loop.size()];
+      if (u < v) {
+        cage.creases.push_back({u, v, sharpness, 0});
+      }
+    }
+  }
+}
+
 // The distance from p to z = a x^2 + b y^2 over |x|, |y| <= half, by a dense search refined
 // by Newton on (x, y): the reference the oracle is held to.
 double paraboloid_distance(const Eigen::Vector3d& p, double a, double b, double half) {
@@ -148,26 +161,10 @@ TEST_CASE("the limit distance agrees with a fine mesh by creases, extraordinary 
   auto cage = cube;
   SECTION("a smooth cube") {}
   SECTION("a cube with every edge creased") {
-    for (int f = 0; f < cage.face_count(); ++f) {
-      const auto loop = cage.face(f);
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        const int u = loop[i], v = loop[(i + 1) % loop.size()];
-        if (u < v) {
-          cage.creases.push_back({u, v, 10.0, 0});
-        }
-      }
-    }
+    crease_every_edge(cage, 10.0);
   }
   SECTION("a cube with semi-sharp edges") {
-    for (int f = 0; f < cage.face_count(); ++f) {
-      const auto loop = cage.face(f);
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        const int u = loop[i], v = loop[(i + 1) % loop.size()];
-        if (u < v) {
-          cage.creases.push_back({u, v, 2.5, 0});
-        }
-      }
-    }
+    crease_every_edge(cage, 2.5);
   }
   SECTION("a triangular prism") {
     cage = prism_cage(3);
@@ -235,15 +232,7 @@ TEST_CASE("a ball pushed out from the limit surface touches it, the short way ro
   for (auto& p : cage.positions) {
     p *= 20.0; // the cube [-10, 10]^3
   }
-  for (int f = 0; f < cage.face_count(); ++f) {
-    const auto loop = cage.face(f);
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const int u = loop[i], v = loop[(i + 1) % loop.size()];
-      if (u < v) {
-        cage.creases.push_back({u, v, 10.0, 0});
-      }
-    }
-  }
+  crease_every_edge(cage, 10.0);
   const auto oracle = geometry::LimitDistance::build(cage);
   REQUIRE(oracle);
   for (const double r : {1.0, 3.0}) {
