@@ -895,6 +895,9 @@ Expected<void> ToolpathPlanner::put_split(const PassPoint& a, const PassPoint& b
                 (a.normal + b.normal).normalized(),
                 within_tilt((a.axis + b.axis).normalized(), options_.max_tilt_deg)};
   place_on_surface(mid);
+  if (thrown_off(mid)) {
+    return whole; // no middle on the surface near the move
+  }
   const cl::ClPose refused = *rejected_;
   for (const Eigen::Vector3d& axis : {mid.axis, a.axis, b.axis}) {
     PassPoint held = mid;
@@ -957,6 +960,10 @@ double ToolpathPlanner::mesh_lift(const TriangleTree& design, const Eigen::Vecto
         return std::nullopt;
       },
       centre, dir, options_.ball_radius, 1e-9);
+}
+
+bool ToolpathPlanner::thrown_off(const PassPoint& p) const {
+  return (p.centre - p.contact).norm() > 2.0 * options_.ball_radius;
 }
 
 double ToolpathPlanner::place_on_surface(PassPoint& p) const {
@@ -1272,13 +1279,12 @@ std::vector<std::vector<ToolpathPlanner::PassPoint>>
 ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& design) const {
   std::vector<std::vector<PassPoint>> pieces;
   const double r = options_.ball_radius;
-  // A ball set on the surface more than a radius off its own contact has not ridden over
-  // a hollow but been thrown out of one: lifted along a wall's normal out of a gap between
-  // two of the rook's merlons it landed 10 mm away, and the moves to it cut 1-3 um where
-  // the pass runs. It ends the pass as a point out of reach does.
-  const auto placed_near = [&](const PassPoint& p) {
-    return (p.centre - p.contact).norm() <= 2.0 * r;
-  };
+  // A ball whose placing left its centre more than two radii from its own contact (a radius
+  // past touching it) has not ridden over a hollow but been thrown out of one: lifted along
+  // a wall's normal out of a gap between two of the rook's merlons it landed 10 mm away, and
+  // the moves to it cut 1-3 um where the pass runs. It ends the pass as a point out of
+  // reach does.
+  const auto placed_near = [&](const PassPoint& p) { return !thrown_off(p); };
   if (!any_hidden_ && !options_.whole_tool && std::ranges::all_of(pass, placed_near)) {
     pieces.push_back(std::move(pass));
     return pieces;

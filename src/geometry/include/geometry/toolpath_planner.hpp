@@ -315,9 +315,12 @@ private:
                                  const Eigen::Vector3d& dir) const;
   // A pass point's ball set on the limit surface itself: moved the shorter way clear of the
   // surface (out from its nearest point, or along its normal), or, where it floats off it
-  // (a chord of the CL mesh over a hollow), lowered onto it. Returns how far it moved up,
+  // (a chord of the CL mesh over a hollow), lowered onto it. Returns how far it moved clear,
   // mm (0 where it was lowered or already touching).
   double place_on_surface(PassPoint& p) const;
+  // Whether placing left the ball more than a radius past touching its own contact: thrown
+  // out of a gap, not riding over a hollow.
+  [[nodiscard]] bool thrown_off(const PassPoint& p) const;
   // Clears every point of the pass on the limit surface and inserts cleared midpoints where
   // the straight sweep between two would cut in.
   void clear_pass(std::vector<PassPoint>& pass);
