@@ -760,11 +760,7 @@ Expected<void> ToolpathPlanner::emit_pass(const std::vector<PassPoint>& given, c
   }
   const auto& pass = leaned.empty() ? given : leaned;
   const auto kept = reduce(pass);
-  const auto pose = [&](std::size_t i) {
-    const auto& p = pass[kept[i]];
-    return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
-                   options_.feed);
-  };
+  const auto pose = [&](std::size_t i) { return feed_pose(pass[kept[i]]); };
   // Each end of what is cut must be left and reached by a climb that clears: a stretch at
   // an end the tool cannot climb out of (under an overhang, past the holder's reach) is
   // left uncut, counted, and the named uncut areas hold it.
@@ -849,11 +845,6 @@ Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>
   // by one; a move refused even between two neighbours is left uncut, the tool retracting
   // and coming down past it, on a pose that itself keeps the gate's depth (the plunge to it
   // runs along its axis). The summary counts each (a planner defect, reported).
-  const auto feed_pose = [&](std::size_t k) {
-    const auto& p = pass[k];
-    return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
-                   options_.feed);
-  };
   const double deepest = options_.ball_radius - 0.5 * gate_.options().tolerance;
   const auto sound = [&](std::size_t k) { return !exact_->nearest(pass[k].centre, deepest); };
   for (std::size_t k = from + 1; k <= to; ++k) {
@@ -871,7 +862,7 @@ Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>
     if (k > end) {
       return end; // the rest of the pass is left uncut
     }
-    SUBFEED_TRY(link_to(feed_pose(k), sink, design, *links_));
+    SUBFEED_TRY(link_to(feed_pose(pass[k]), sink, design, *links_));
     if (k >= to) {
       return k;
     }
@@ -881,9 +872,7 @@ Expected<std::size_t> ToolpathPlanner::recover_move(const std::vector<PassPoint>
 
 Expected<void> ToolpathPlanner::put_split(const PassPoint& a, const PassPoint& b, int depth,
                                           const Sink& sink) {
-  auto whole = put(pose_at(b.centre - options_.ball_radius * b.axis, b.axis, cl::MoveKind::feed,
-                           options_.feed),
-                   sink);
+  auto whole = put(feed_pose(b), sink);
   if (whole || !rejected_ || depth == 0) {
     return whole;
   }
@@ -891,9 +880,7 @@ Expected<void> ToolpathPlanner::put_split(const PassPoint& a, const PassPoint& b
   // straight sweep dips where the points' own check saw none), with the blended axis or one
   // held from either end (a blend can swing the flutes past a wall both ends clear). Every
   // move still goes to the gate from wherever the tool is.
-  PassPoint mid{0.5 * (a.centre + b.centre), 0.5 * (a.contact + b.contact),
-                (a.normal + b.normal).normalized(),
-                within_tilt((a.axis + b.axis).normalized(), options_.max_tilt_deg)};
+  PassPoint mid = between(a, b, 0.5);
   place_on_surface(mid);
   if (thrown_off(mid)) {
     return whole; // no middle on the surface near the move
@@ -960,6 +947,18 @@ double ToolpathPlanner::mesh_lift(const TriangleTree& design, const Eigen::Vecto
         return std::nullopt;
       },
       centre, dir, options_.ball_radius, 1e-9);
+}
+
+cl::ClPose ToolpathPlanner::feed_pose(const PassPoint& p) const {
+  return pose_at(p.centre - options_.ball_radius * p.axis, p.axis, cl::MoveKind::feed,
+                 options_.feed);
+}
+
+ToolpathPlanner::PassPoint ToolpathPlanner::between(const PassPoint& a, const PassPoint& b,
+                                                    double t) const {
+  return {(1 - t) * a.centre + t * b.centre, (1 - t) * a.contact + t * b.contact,
+          ((1 - t) * a.normal + t * b.normal).normalized(),
+          within_tilt(((1 - t) * a.axis + t * b.axis).normalized(), options_.max_tilt_deg)};
 }
 
 bool ToolpathPlanner::thrown_off(const PassPoint& p) const {
@@ -1074,9 +1073,7 @@ void ToolpathPlanner::clear_pass(std::vector<PassPoint>& pass) {
     } else if (exact_->nearest(a.centre + 0.5 * ab, r + off)) {
       return; // touching within the tolerance
     }
-    PassPoint mid{(1 - t) * a.centre + t * b.centre, (1 - t) * a.contact + t * b.contact,
-                  ((1 - t) * a.normal + t * b.normal).normalized(),
-                  within_tilt(((1 - t) * a.axis + t * b.axis).normalized(), options_.max_tilt_deg)};
+    PassPoint mid = between(a, b, t);
     const Eigen::Vector3d straight = mid.centre;
     lift_clear(mid);
     if ((mid.centre - straight).norm() <= off) {
@@ -1326,7 +1323,7 @@ ToolpathPlanner::within_reach(std::vector<PassPoint> pass, const TriangleTree& d
     if (placed_near(p) &&
         (!any_hidden_ || withdraws(design, p.centre, p.axis, top_z_, reach_options_)) &&
         tool_clear(p.centre, p.axis)) {
-      if (!piece.empty() && !move_clear(piece.back(), p)) {
+      if (clearance && !piece.empty() && !move_clear(piece.back(), p)) {
         close();
       }
       piece.push_back(std::move(p));

@@ -318,6 +318,10 @@ private:
   // (a chord of the CL mesh over a hollow), lowered onto it. Returns how far it moved clear,
   // mm (0 where it was lowered or already touching).
   double place_on_surface(PassPoint& p) const;
+  // The feed pose whose ball centre and axis are the point's.
+  [[nodiscard]] cl::ClPose feed_pose(const PassPoint& p) const;
+  // The point a fraction `t` of the way from `a` to `b` (axis within the tilt), not placed.
+  [[nodiscard]] PassPoint between(const PassPoint& a, const PassPoint& b, double t) const;
   // Whether placing left the ball more than a radius past touching its own contact: thrown
   // out of a gap, not riding over a hollow.
   [[nodiscard]] bool thrown_off(const PassPoint& p) const;
